@@ -1,0 +1,32 @@
+#pragma once
+// Small command-line helpers shared by the subcommands.
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace gearsph::cli {
+
+// argv after the subcommand, with "--name value" and "--flag" options.
+class Args {
+ public:
+  Args(int argc, char** argv, int first);
+  // The value of --name (removes it); nullopt if absent. Throws if it has no value.
+  std::optional<std::string> option(const std::string& name);
+  bool flag(const std::string& name);
+  int integer(const std::string& name, int fallback);
+  // Remaining positional arguments; throws on a leftover --option.
+  std::vector<std::string> positional() const;
+
+ private:
+  std::vector<std::string> args_;
+};
+
+std::string read_file(const std::string& path);
+// Writes via a temporary file and rename, so readers never see half a file.
+void write_file_atomic(const std::string& path, const std::string& content);
+
+int cmd_run(Args& args);
+int cmd_validate(Args& args);
+int cmd_schema(Args& args);
+
+}  // namespace gearsph::cli

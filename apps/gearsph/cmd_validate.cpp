@@ -1,0 +1,66 @@
+// gearsph validate: every validation case against its reference, as a table
+// and as JSON.
+#include <cstdio>
+#include <filesystem>
+
+#include "apps/gearsph/cli.hpp"
+#include "solver/job/job.hpp"
+#include "solver/run/runner.hpp"
+#include "solver/validation/cases.hpp"
+
+namespace gearsph::cli {
+
+int cmd_validate(Args& args) {
+  const bool quick = args.flag("quick");
+  const std::string out = args.option("out").value_or("validation");
+  const int threads = args.integer("threads", 0);
+  const auto filter = args.option("only");
+  args.positional();
+  std::filesystem::create_directories(out);
+
+  nlohmann::json report = nlohmann::json::array();
+  int failures = 0;
+  std::printf("%-34s %-8s %12s %12s %10s %10s %5s %9s %8s\n", "case", "section", "reference",
+              "measured", "error", "tolerance", "pass", "particles", "wall_s");
+  for (const validation::Case& c : validation::cases(quick)) {
+    if (filter && c.id.find(*filter) == std::string::npos) continue;
+    PreparedJob job = prepare_job(c.job, threads);
+    const RunResult result = run_job(job);
+    const validation::Measurement m = c.measure(result.summary, c.tolerance);
+    failures += m.pass ? 0 : 1;
+    // Relative cases: signed error in percent; bounds: the ratio to the scale.
+    char err[32], tol[32];
+    if (c.kind == validation::Case::Kind::Relative) {
+      std::snprintf(err, sizeof err, "%+.2f%%", 100.0 * m.error);
+      std::snprintf(tol, sizeof tol, "+-%.0f%%", 100.0 * c.tolerance);
+    } else {
+      std::snprintf(err, sizeof err, "%.3g", m.error);
+      std::snprintf(tol, sizeof tol, "<= %.3g", c.tolerance);
+    }
+    std::printf("%-34s %-8s %12.5g %12.5g %10s %10s %5s %9zu %8.2f\n", c.id.c_str(),
+                ("sec. " + c.section).c_str(), m.reference, m.measured, err, tol,
+                m.pass ? "yes" : "NO", job.scene.sim.particles.n, result.wall_s);
+    std::fflush(stdout);
+    report.push_back({{"case", c.id},
+                      {"section", c.section},
+                      {"quantity", c.quantity},
+                      {"reference_formula", c.reference},
+                      {"reference", m.reference},
+                      {"measured", m.measured},
+                      {"error", m.error},
+                      {"tolerance", c.tolerance},
+                      {"kind", c.kind == validation::Case::Kind::Relative ? "relative" : "bound"},
+                      {"pass", m.pass},
+                      {"note", m.note},
+                      {"particles", job.scene.sim.particles.n},
+                      {"steps", result.steps_done},
+                      {"wall_s", result.wall_s},
+                      {"job", c.job},
+                      {"summary", result.summary}});
+  }
+  write_file_atomic(out + "/validation.json", report.dump(2) + "\n");
+  std::printf("%d case(s) failed; report in %s/validation.json\n", failures, out.c_str());
+  return failures == 0 ? 0 : 1;
+}
+
+}  // namespace gearsph::cli

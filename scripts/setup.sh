@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs every Debian package GearSPH needs to build, test and run.
+# Idempotent: safe to run again; apt-get skips what is already installed.
+set -euo pipefail
+
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+
+PACKAGES=(
+  # toolchain
+  build-essential cmake ninja-build pkg-config git clang-format
+  # libraries (architecture.md: Beast, nlohmann-json, Eigen, HDF5, SQLite, OSMesa)
+  libboost-dev nlohmann-json3-dev libeigen3-dev libhdf5-dev hdf5-tools
+  libsqlite3-dev sqlite3 libosmesa6-dev libpng-dev
+  # tests and benchmarks
+  libgtest-dev libbenchmark-dev python3-pysph curl
+)
+
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${PACKAGES[@]}" >/dev/null
+echo "setup: Debian packages installed"

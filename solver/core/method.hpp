@@ -1,0 +1,54 @@
+#pragma once
+// The numerical method of a run: formulation, kernel, and the optional terms.
+// Defaults here are the library's; the job schema documents the user-facing
+// defaults and ranges (schemas/job.schema.json), which the job reader applies.
+#include <string>
+
+#include "solver/kernels/kernel.hpp"
+#include "solver/physics/kernel_correction.hpp"
+
+namespace gearsph {
+
+enum class Formulation { UpdatedLagrangian, TotalLagrangian };
+
+struct Discretization {
+  double dx = 1e-3;        // lattice spacing [m]
+  double h_over_dx = 1.0;  // smoothing length h = kappa dx
+  KernelType kernel = KernelType::SeedQuartic;
+  double h() const { return h_over_dx * dx; }
+};
+
+// Monaghan artificial viscosity (Monaghan 1992, eq. 4.1); the paper's Pi_ij.
+struct ArtificialViscosity {
+  double alpha = 1.0;
+  double beta = 1.0;
+  double eta_over_h = 0.1;  // eta = 0.1 h keeps phi finite as r -> 0
+};
+
+// Monaghan 2000 / Gray, Monaghan & Swift 2001 artificial stress against the
+// tensile instability; epsilon = 0 switches it off.
+struct ArtificialStress {
+  double epsilon = 0.3;
+  int n = 4;
+  bool enabled() const { return epsilon > 0.0; }
+};
+
+// Hourglass (zero-energy mode) control; coefficient 0 switches it off.
+// TL: Ganzenmueller 2015 penalty on the non-affine pair stretch.
+// UL: damping of the non-affine part of the pair approach speed.
+struct HourglassControl {
+  double coefficient = 0.0;
+  bool enabled() const { return coefficient > 0.0; }
+};
+
+struct MethodConfig {
+  Formulation formulation = Formulation::UpdatedLagrangian;
+  GradientCorrection correction = GradientCorrection::Quadratic;
+  ArtificialViscosity viscosity;
+  ArtificialStress artificial_stress;
+  HourglassControl hourglass;
+};
+
+const char* formulation_name(Formulation f);
+
+}  // namespace gearsph

@@ -1,0 +1,40 @@
+#include "solver/core/particles.hpp"
+
+#include <cmath>
+
+namespace gearsph {
+
+void Particles::resize(std::size_t count) {
+  n = count;
+  for (auto* v : {&body}) v->resize(count, 0);
+  motion.resize(count, 0);
+  correction_order.resize(count, 0);
+  for (auto* v : {&x0,   &y0,   &mass, &rho0, &cs,     &x,      &y,    &vx,   &vy,   &rho,  &p,
+                  &sxx,  &syy,  &sxy,  &szz,  &ax,     &ay,     &drho, &lxx,  &lxy,  &lyx,  &lyy,
+                  &bxx,  &bxy,  &byx,  &byy,  &fxx,    &fxy,    &fyx,  &fyy,  &rxx,  &ryy,  &rxy,
+                  &qxx,  &qxy,  &qyx,  &qyy,  &ext_ax, &ext_ay, &bqx0, &bqx1, &bqx2, &bqy0, &bqy1,
+                  &bqy2, &qqx0, &qqx1, &qqx2, &qqy0,   &qqy1,   &qqy2}) {
+    v->resize(count, 0.0);
+  }
+}
+
+void Particles::add(double px, double py, double m, double density, int body_index,
+                    int motion_index) {
+  const std::size_t i = n;
+  resize(n + 1);
+  body[i] = body_index;
+  motion[i] = static_cast<std::uint16_t>(motion_index);
+  x0[i] = x[i] = px;
+  y0[i] = y[i] = py;
+  mass[i] = m;
+  rho0[i] = rho[i] = density;
+  bxx[i] = byy[i] = 1.0;
+  fxx[i] = fyy[i] = 1.0;
+}
+
+double Particles::von_mises(std::size_t i) const {
+  const double j2 = 0.5 * (sxx[i] * sxx[i] + syy[i] * syy[i] + szz[i] * szz[i]) + sxy[i] * sxy[i];
+  return std::sqrt(3.0 * j2);
+}
+
+}  // namespace gearsph

@@ -1,0 +1,64 @@
+#pragma once
+// The particle store: one array per quantity (structure of arrays), sized
+// once when the scene is built. Nothing here allocates during a time step.
+//
+// Conventions: 2D plane strain, SI units, quantities per unit thickness
+// (mass in kg/m). Stress is split into pressure p and deviator S with the
+// out-of-plane component S_zz kept (plane strain: eps_zz = 0, S_zz != 0).
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace gearsph {
+
+struct Particles {
+  std::size_t n = 0;
+
+  // Identity and bookkeeping.
+  std::vector<std::int32_t> body;     // index into Scene::bodies
+  std::vector<std::uint16_t> motion;  // index into Scene::motions (0 = free)
+
+  // Reference configuration (initial positions; TL reference).
+  std::vector<double> x0, y0;
+  std::vector<double> mass;  // [kg/m]
+  std::vector<double> rho0;  // [kg/m^3]
+  std::vector<double> cs;    // signal (P-wave) speed of the material [m/s]
+
+  // State.
+  std::vector<double> x, y;                // position [m]
+  std::vector<double> vx, vy;              // velocity [m/s]
+  std::vector<double> rho;                 // density [kg/m^3]
+  std::vector<double> p;                   // pressure [Pa], positive in compression
+  std::vector<double> sxx, syy, sxy, szz;  // deviatoric stress [Pa]
+
+  // Rates and per-step work arrays.
+  std::vector<double> ax, ay;              // acceleration [m/s^2]
+  std::vector<double> drho;                // density rate [kg/m^3/s]
+  std::vector<double> lxx, lxy, lyx, lyy;  // velocity gradient L = grad v [1/s]
+  // Gradient correction C = [b | bq] (physics/kernel_correction.hpp):
+  // linear block b (2x2) and quadratic block bq (2x3, rows x and y).
+  std::vector<double> bxx, bxy, byx, byy;
+  std::vector<double> bqx0, bqx1, bqx2, bqy0, bqy1, bqy2;
+  std::vector<std::uint8_t> correction_order;  // GradientCorrection actually used
+  std::vector<double> fxx, fxy, fyx, fyy;      // deformation gradient (total Lagrangian)
+  std::vector<double> rxx, ryy, rxy;           // artificial stress R_i / rho^2 (Monaghan 2000)
+  // (sigma_i / rho_i^2) C_i, cached for the momentum loop: linear and quadratic blocks.
+  std::vector<double> qxx, qxy, qyx, qyy;
+  std::vector<double> qqx0, qqx1, qqx2, qqy0, qqy1, qqy2;
+  std::vector<double> ext_ax, ext_ay;  // external (contact, load) accel. this step
+
+  void resize(std::size_t count);
+  void add(double px, double py, double m, double density, int body_index, int motion_index);
+
+  double volume(std::size_t i) const { return mass[i] / rho[i]; }
+
+  // sigma = -p I + S, in-plane components and zz.
+  double sigma_xx(std::size_t i) const { return -p[i] + sxx[i]; }
+  double sigma_yy(std::size_t i) const { return -p[i] + syy[i]; }
+  double sigma_xy(std::size_t i) const { return sxy[i]; }
+  double sigma_zz(std::size_t i) const { return -p[i] + szz[i]; }
+  // von Mises equivalent stress sqrt(3/2 S:S), S with all three normal components.
+  double von_mises(std::size_t i) const;
+};
+
+}  // namespace gearsph

@@ -1,0 +1,53 @@
+#pragma once
+// Everything a time step reads and writes: particles, bodies, constraints,
+// method, neighbour lists and the running energy ledger.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "solver/core/body.hpp"
+#include "solver/core/method.hpp"
+#include "solver/core/motion.hpp"
+#include "solver/core/particles.hpp"
+#include "solver/neighbours/neighbour_list.hpp"
+#include "solver/physics/total_lagrangian.hpp"
+
+namespace gearsph {
+
+struct Box {
+  double x_min = 0, y_min = 0, x_max = 0, y_max = 0;
+  bool contains(double x, double y) const {
+    return x >= x_min && x <= x_max && y >= y_min && y <= y_max;
+  }
+};
+
+// Energy that leaves or enters the particles other than as kinetic/elastic
+// energy, integrated over the run [J per metre of thickness].
+struct EnergyLedger {
+  double dissipated = 0.0;     // artificial viscosity and hourglass damping
+  double drive_work = 0.0;     // work done on the particles by kinematic constraints
+  double external_work = 0.0;  // work of external forces (loads, contact)
+};
+
+struct Simulation {
+  Particles particles;
+  std::vector<Body> bodies;
+  std::vector<Motion> motions{Motion::free()};
+  Discretization discretization;
+  MethodConfig method;
+
+  double dt = 0.0;
+  double time = 0.0;
+  std::int64_t step = 0;
+  Box domain;  // leaving it stops the run (divergence guard)
+  int threads = 1;
+
+  NeighbourList neighbours;  // kernel interactions (updated Lagrangian)
+  ReferencePairs reference;  // fixed pairs (total Lagrangian)
+  EnergyLedger energy;
+
+  double h() const { return discretization.h(); }
+  const Material& material_of(std::size_t i) const { return bodies[particles.body[i]].material; }
+};
+
+}  // namespace gearsph

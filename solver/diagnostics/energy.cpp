@@ -1,0 +1,64 @@
+#include "solver/diagnostics/energy.hpp"
+
+#include "solver/core/simulation.hpp"
+
+namespace gearsph::diagnostics {
+
+EnergyState energy(const Simulation& sim) {
+  const Particles& p = sim.particles;
+  EnergyState e;
+  const bool tl = sim.method.formulation == Formulation::TotalLagrangian;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    e.kinetic += 0.5 * p.mass[i] * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i]);
+    const Material& mat = sim.material_of(i);
+    if (tl) {
+      // Saint Venant-Kirchhoff: lambda/2 tr(E)^2 + mu E:E per reference volume.
+      const double fxx = p.fxx[i], fxy = p.fxy[i], fyx = p.fyx[i], fyy = p.fyy[i];
+      const double exx = 0.5 * (fxx * fxx + fyx * fyx - 1.0);
+      const double eyy = 0.5 * (fxy * fxy + fyy * fyy - 1.0);
+      const double exy = 0.5 * (fxx * fxy + fyx * fyy);
+      const double tr = exx + eyy;
+      const double w = 0.5 * mat.lame_lambda() * tr * tr +
+                       mat.shear_modulus() * (exx * exx + eyy * eyy + 2 * exy * exy);
+      e.elastic += w * p.mass[i] / p.rho0[i];
+    } else {
+      // Linear elastic energy density p^2/(2K) + S:S/(4G), current volume.
+      const double ss = p.sxx[i] * p.sxx[i] + p.syy[i] * p.syy[i] + p.szz[i] * p.szz[i] +
+                        2.0 * p.sxy[i] * p.sxy[i];
+      const double w =
+          p.p[i] * p.p[i] / (2.0 * mat.bulk_modulus()) + ss / (4.0 * mat.shear_modulus());
+      e.elastic += w * p.mass[i] / p.rho[i];
+    }
+  }
+  e.dissipated = sim.energy.dissipated;
+  e.drive_work = sim.energy.drive_work;
+  e.external_work = sim.energy.external_work;
+  return e;
+}
+
+Momentum momentum(const Simulation& sim, int body) {
+  const Particles& p = sim.particles;
+  Momentum m;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    if (body >= 0 && p.body[i] != body) continue;
+    m.px += p.mass[i] * p.vx[i];
+    m.py += p.mass[i] * p.vy[i];
+  }
+  return m;
+}
+
+StressPeak max_von_mises(const Simulation& sim, int body) {
+  const Particles& p = sim.particles;
+  StressPeak s;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    if (body >= 0 && p.body[i] != body) continue;
+    const double vm = p.von_mises(i);
+    if (vm > s.von_mises) {
+      s.von_mises = vm;
+      s.particle = static_cast<long>(i);
+    }
+  }
+  return s;
+}
+
+}  // namespace gearsph::diagnostics

@@ -1,0 +1,164 @@
+#include "solver/job/job.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "solver/integrate/integrator.hpp"
+#include "solver/job/json_schema.hpp"
+#include "solver/scene/builders.hpp"
+
+namespace gearsph {
+
+extern const char* const kJobSchemaText;
+
+namespace {
+
+std::string summarise(const std::vector<JobIssue>& issues) {
+  std::ostringstream s;
+  s << "invalid job:";
+  for (const JobIssue& i : issues)
+    s << "\n  " << (i.pointer.empty() ? "/" : i.pointer) << ": " << i.message;
+  return s.str();
+}
+
+[[noreturn]] void refuse(const std::string& pointer, const std::string& message) {
+  throw InvalidJob({{pointer, message}});
+}
+
+const jsonschema::Validator& validator() {
+  static const jsonschema::Validator v(job_schema());
+  return v;
+}
+
+// Default smoothing length: every kernel reaches 3 dx (method.md: kappa = 1
+// for the paper's support-3h kernel).
+double default_h_over_dx(KernelType k) {
+  return kernel_support(k) >= 3.0 ? 1.0 : 1.5;
+}
+
+Discretization read_discretization(const nlohmann::json& d) {
+  Discretization out;
+  out.kernel = *kernel_from_name(d.at("kernel").get<std::string>());
+  if (d.contains("spacing_m") && d.contains("spacing_mm")) {
+    refuse("/discretization/spacing_mm",
+           "give the spacing once: spacing_m or spacing_mm, not both");
+  }
+  out.dx = d.contains("spacing_m")    ? d.at("spacing_m").get<double>()
+           : d.contains("spacing_mm") ? 1e-3 * d.at("spacing_mm").get<double>()
+                                      : 0.0;
+  out.h_over_dx =
+      d.contains("h_over_dx") ? d.at("h_over_dx").get<double>() : default_h_over_dx(out.kernel);
+  return out;
+}
+
+MethodConfig read_method(const nlohmann::json& m) {
+  MethodConfig out;
+  out.formulation = m.at("formulation").get<std::string>() == "total_lagrangian"
+                        ? Formulation::TotalLagrangian
+                        : Formulation::UpdatedLagrangian;
+  const std::string corr = m.at("gradient_correction").get<std::string>();
+  out.correction = corr == "none"     ? GradientCorrection::None
+                   : corr == "linear" ? GradientCorrection::Linear
+                                      : GradientCorrection::Quadratic;
+  const auto& av = m.at("artificial_viscosity");
+  out.viscosity.alpha = av.at("alpha").get<double>();
+  out.viscosity.beta = av.at("beta").get<double>();
+  out.viscosity.eta_over_h = av.at("eta_over_h").get<double>();
+  const auto& as = m.at("artificial_stress");
+  out.artificial_stress.epsilon = as.at("epsilon").get<double>();
+  out.artificial_stress.n = as.at("n").get<int>();
+  // The total-Lagrangian kernel never sees the deformed spacing: no tensile
+  // instability, so artificial stress does not apply there.
+  if (out.formulation == Formulation::TotalLagrangian) out.artificial_stress.epsilon = 0.0;
+  out.hourglass.coefficient = m.at("hourglass").at("coefficient").get<double>();
+  return out;
+}
+
+Scene build_scene(const nlohmann::json& job, const Discretization& disc) {
+  const nlohmann::json& s = job.at("scene");
+  const std::string type = s.at("type").get<std::string>();
+  const scenes::SceneInput in{s, disc};
+  if (type == "plate") return scenes::build_plate(in);
+  if (type == "strip_wave") return scenes::build_strip_wave(in);
+  if (type == "spinning_disk") return scenes::build_spinning_disk(in);
+  refuse("/scene/type", "is not a scene this build knows");
+}
+
+}  // namespace
+
+InvalidJob::InvalidJob(std::vector<JobIssue> list)
+    : std::runtime_error(summarise(list)), issues(std::move(list)) {}
+
+const nlohmann::json& job_schema() {
+  static const nlohmann::json schema = nlohmann::json::parse(kJobSchemaText);
+  return schema;
+}
+
+nlohmann::json parse_job_text(const std::string& text) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    std::string what = e.what();
+    // nlohmann prefixes "[json.exception.parse_error.101] "; keep the sentence.
+    const auto cut = what.find("] ");
+    if (cut != std::string::npos) what = what.substr(cut + 2);
+    refuse("", "is not valid JSON: " + what);
+  }
+}
+
+nlohmann::json validate_job(const nlohmann::json& job) {
+  const std::vector<jsonschema::Error> errors = validator().validate(job);
+  if (!errors.empty()) {
+    std::vector<JobIssue> issues;
+    for (const auto& e : errors) issues.push_back({e.pointer, e.message});
+    throw InvalidJob(std::move(issues));
+  }
+  if (job.contains("time") && job["time"].is_object() && job["time"].contains("dt_s") &&
+      job["time"].contains("cfl")) {
+    refuse("/time/cfl", "give either dt_s (a fixed step) or cfl, not both");
+  }
+  return validator().apply_defaults(job);
+}
+
+PreparedJob prepare_job(const nlohmann::json& raw, int threads) {
+  PreparedJob out;
+  out.job = validate_job(raw);
+  const nlohmann::json& job = out.job;
+  try {
+    const Discretization disc = read_discretization(job.at("discretization"));
+    out.scene = build_scene(job, disc);
+  } catch (const JobError& e) {
+    refuse(e.pointer, e.what());
+  }
+  Simulation& sim = out.scene.sim;
+  sim.method = read_method(job.at("method"));
+  const int job_threads = job.at("threads").get<int>();
+  sim.threads = threads > 0 ? threads : job_threads > 0 ? job_threads : omp_get_max_threads();
+
+  const nlohmann::json& t = job.at("time");
+  out.end_s = t.contains("end_s") ? t.at("end_s").get<double>() : out.scene.default_end_s;
+  TimeStepRequest request;
+  if (t.contains("dt_s")) request.dt_s = t.at("dt_s").get<double>();
+  if (t.contains("cfl")) request.cfl = t.at("cfl").get<double>();
+  request.allow_unstable = t.at("allow_unstable").get<bool>();
+  try {
+    out.time_step = choose_time_step(sim, request);
+  } catch (const TimeStepError& e) {
+    refuse(request.dt_s ? "/time/dt_s" : "/time/cfl", e.what());
+  }
+  sim.dt = out.time_step.dt;
+  out.steps = static_cast<std::int64_t>(std::ceil(out.end_s / sim.dt - 1e-9));
+  constexpr std::int64_t kMaxSteps = 2'000'000'000;
+  if (out.steps > kMaxSteps) {
+    refuse("/time/end_s", "asks for " + std::to_string(out.steps) + " time steps; at most " +
+                              std::to_string(kMaxSteps) + " are allowed");
+  }
+  const auto points = job.at("output").at("history_points").get<std::int64_t>();
+  out.history_every = std::max<std::int64_t>(1, out.steps / points);
+  return out;
+}
+
+}  // namespace gearsph

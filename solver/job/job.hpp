@@ -1,0 +1,47 @@
+#pragma once
+// A job from JSON text to a ready-to-run scene: parse, check against
+// schemas/job.schema.json (compiled in), fill defaults, build the scene and
+// choose the time step. Every refusal names the JSON pointer of the field.
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "solver/integrate/time_step.hpp"
+#include "solver/scene/scene.hpp"
+
+namespace gearsph {
+
+struct JobIssue {
+  std::string pointer;  // RFC 6901 JSON pointer into the job
+  std::string message;  // one sentence
+};
+
+class InvalidJob : public std::runtime_error {
+ public:
+  explicit InvalidJob(std::vector<JobIssue> issues);
+  std::vector<JobIssue> issues;
+};
+
+const nlohmann::json& job_schema();
+
+// Parses JSON text; malformed JSON becomes an InvalidJob at pointer "".
+nlohmann::json parse_job_text(const std::string& text);
+// Schema check and defaults; throws InvalidJob listing every violation.
+nlohmann::json validate_job(const nlohmann::json& job);
+
+struct PreparedJob {
+  nlohmann::json job;  // with defaults
+  Scene scene;
+  TimeStepChoice time_step;
+  double end_s = 0.0;
+  std::int64_t steps = 0;
+  std::int64_t history_every = 1;
+};
+
+// Validates, builds the scene, chooses dt. `threads` <= 0: the job's or all cores.
+PreparedJob prepare_job(const nlohmann::json& job, int threads = 0);
+
+}  // namespace gearsph

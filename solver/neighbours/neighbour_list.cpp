@@ -1,0 +1,80 @@
+#include "solver/neighbours/neighbour_list.hpp"
+
+#include <algorithm>
+
+#include "solver/core/particles.hpp"
+
+namespace gearsph {
+
+namespace {
+
+bool selected(PairSelection s, int body_i, int body_j) {
+  switch (s) {
+    case PairSelection::SameBody:
+      return body_i == body_j;
+    case PairSelection::AnyBody:
+      return true;
+    case PairSelection::OtherBody:
+      break;
+  }
+  return body_i != body_j;
+}
+
+}  // namespace
+
+void NeighbourList::build(const Particles& p, double cutoff, PairSelection selection,
+                          bool reference, int threads) {
+  const std::size_t n = p.n;
+  const double* px = reference ? p.x0.data() : p.x.data();
+  const double* py = reference ? p.y0.data() : p.y.data();
+  cutoff_ = cutoff;
+  grid_.build(px, py, n, cutoff);
+  const double c2 = cutoff * cutoff;
+
+  auto scan = [&](std::size_t i, auto&& emit) {
+    const double xi = px[i], yi = py[i];
+    const int bi = p.body[i];
+    grid_.for_each_near(xi, yi, [&](std::uint32_t k) {
+      if (k == i || !selected(selection, bi, p.body[k])) return;
+      const double dx = xi - px[k], dy = yi - py[k];
+      if (dx * dx + dy * dy < c2) emit(k);
+    });
+  };
+
+  count_.assign(n, 0);
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t c = 0;
+    scan(i, [&](std::uint32_t) { ++c; });
+    count_[i] = c;
+  }
+  rows.resize(n + 1);
+  rows[0] = 0;
+  for (std::size_t i = 0; i < n; ++i) rows[i + 1] = rows[i] + count_[i];
+  j.resize(rows[n]);
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t at = rows[i];
+    scan(i, [&](std::uint32_t k) { j[at++] = k; });
+    // Sorted rows: deterministic order and forward memory access.
+    std::sort(j.begin() + rows[i], j.begin() + rows[i + 1]);
+  }
+  gx.assign(j.size(), 0.0);
+  gy.assign(j.size(), 0.0);
+  w.assign(j.size(), 0.0);
+  x_built_.assign(p.x.begin(), p.x.end());
+  y_built_.assign(p.y.begin(), p.y.end());
+  ++builds_;
+}
+
+bool NeighbourList::needs_rebuild(const Particles& p) const {
+  if (x_built_.size() != p.n) return true;
+  const double limit2 = 0.25 * skin_ * skin_;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    const double dx = p.x[i] - x_built_[i], dy = p.y[i] - y_built_[i];
+    if (dx * dx + dy * dy > limit2) return true;
+  }
+  return false;
+}
+
+}  // namespace gearsph

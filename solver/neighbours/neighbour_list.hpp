@@ -1,0 +1,57 @@
+#pragma once
+// Verlet neighbour lists with a skin, stored as compressed rows: row i holds
+// every j within `cutoff = support + skin` of i (both directions are stored,
+// so each particle only ever writes to itself: no races, results independent
+// of the thread count). The list is rebuilt only when some particle has moved
+// more than half the skin since the last build (particles move ~1e-8 m per
+// step, so a rebuild every few thousand steps).
+//
+// Per entry the kernel gradient grad_i W_ij (and W_ij) are cached at the
+// current positions, computed once per step and used by every pair loop.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "solver/neighbours/cell_grid.hpp"
+
+namespace gearsph {
+
+struct Particles;
+
+// Which pairs go into a list.
+enum class PairSelection {
+  SameBody,   // kernel interactions inside one body
+  AnyBody,    // kernel interactions across bodies too (contact model "kernel")
+  OtherBody,  // contact candidates: pairs from different bodies only
+};
+
+class NeighbourList {
+ public:
+  // rows[i] .. rows[i+1] index the entries of particle i.
+  std::vector<std::uint32_t> rows;
+  std::vector<std::uint32_t> j;
+  // Cached per entry, refreshed each step by the pair loops.
+  std::vector<double> gx, gy;  // grad_i W_ij
+  std::vector<double> w;       // W_ij
+
+  // Builds from the current positions (or reference positions when
+  // `reference` is set, for total-Lagrangian lists that never change).
+  void build(const Particles& p, double cutoff, PairSelection selection, bool reference,
+             int threads);
+  bool needs_rebuild(const Particles& p) const;
+  std::size_t entries() const { return j.size(); }
+  std::size_t builds() const { return builds_; }
+  double cutoff() const { return cutoff_; }
+  double skin() const { return skin_; }
+  void set_skin(double skin) { skin_ = skin; }
+
+ private:
+  CellGrid grid_;
+  std::vector<double> x_built_, y_built_;
+  std::vector<std::uint32_t> count_;
+  double cutoff_ = 0.0;
+  double skin_ = 0.0;
+  std::size_t builds_ = 0;
+};
+
+}  // namespace gearsph

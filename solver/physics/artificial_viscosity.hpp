@@ -1,0 +1,21 @@
+#pragma once
+// Monaghan artificial viscosity, the paper's Pi_ij (Monaghan 1992, eq. 4.1):
+//   Pi_ij = (-alpha c_ij phi_ij + beta phi_ij^2) / rho_ij   if v_ij . x_ij < 0
+//   phi_ij = h v_ij . x_ij / (|x_ij|^2 + eta^2)
+// with pair means c_ij, rho_ij. Pi_ij >= 0, and it enters the momentum
+// equation with a minus sign, like a pressure, so it only removes kinetic
+// energy (the paper's "+ Pi delta" is a sign-convention slip; method.md).
+#include "solver/core/method.hpp"
+
+namespace gearsph::physics {
+
+// vr = v_ij . x_ij, r2 = |x_ij|^2.
+inline double monaghan_pi(const ArtificialViscosity& av, double h, double vr, double r2,
+                          double c_mean, double rho_mean) {
+  if (vr >= 0.0) return 0.0;  // separating pairs are not damped
+  const double eta = av.eta_over_h * h;
+  const double phi = h * vr / (r2 + eta * eta);
+  return (-av.alpha * c_mean * phi + av.beta * phi * phi) / rho_mean;
+}
+
+}  // namespace gearsph::physics

@@ -1,0 +1,16 @@
+#pragma once
+// Momentum equation of the updated-Lagrangian method (the paper's eq.;
+// Monaghan 1992 eq. 2.12, Gray, Monaghan & Swift 2001 eq. 8):
+//   dv_i/dt = sum_j m_j (sigma_i/rho_i^2 B_i + sigma_j/rho_j^2 B_j
+//                        - Pi_ij I + (R_i + R_j) f_ij^n) . grad_i W_ij
+// Pairwise antisymmetric, so linear momentum is conserved to round-off;
+// B = I unless the kernel-gradient correction is on. Hourglass damping is
+// added here too (see hourglass.hpp). Fills ax, ay and returns nothing;
+// the energy removed by viscosity and hourglass damping over dt is added to
+// the ledger.
+namespace gearsph {
+struct Simulation;
+namespace physics {
+void momentum(Simulation& sim, double dt);
+}  // namespace physics
+}  // namespace gearsph

@@ -1,0 +1,109 @@
+#include "solver/run/runner.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "solver/diagnostics/energy.hpp"
+#include "solver/diagnostics/guard.hpp"
+#include "solver/integrate/integrator.hpp"
+#include "solver/run/summary.hpp"
+
+namespace gearsph {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The columns every run records, then the scene's own.
+History make_history(const Scene& scene) {
+  std::vector<std::string> cols = {"time_s",
+                                   "max_von_mises_Pa",
+                                   "kinetic_J_per_m",
+                                   "elastic_J_per_m",
+                                   "dissipated_J_per_m",
+                                   "drive_work_J_per_m",
+                                   "energy_balance_J_per_m",
+                                   "momentum_x_kg_m_s",
+                                   "momentum_y_kg_m_s"};
+  for (const HistoryColumn& c : scene.columns) cols.push_back(c.name);
+  return History(cols);
+}
+
+void sample(const Scene& scene, History& history, std::vector<double>& row) {
+  const Simulation& sim = scene.sim;
+  const diagnostics::EnergyState e = diagnostics::energy(sim);
+  const diagnostics::Momentum m = diagnostics::momentum(sim);
+  row.clear();
+  row.push_back(sim.time);
+  row.push_back(diagnostics::max_von_mises(sim).von_mises);
+  row.push_back(e.kinetic);
+  row.push_back(e.elastic);
+  row.push_back(e.dissipated);
+  row.push_back(e.drive_work);
+  row.push_back(e.total());
+  row.push_back(m.px);
+  row.push_back(m.py);
+  for (const HistoryColumn& c : scene.columns) row.push_back(c.value(sim));
+  history.add_row(row);
+}
+
+}  // namespace
+
+RunResult run_job(PreparedJob& job, RunObserver* observer) {
+  Scene& scene = job.scene;
+  Simulation& sim = scene.sim;
+  RunResult result;
+  result.history = make_history(scene);
+  result.history.reserve_rows(static_cast<std::size_t>(job.steps / job.history_every + 2));
+  PeakTracker peak;
+  std::vector<double> row;
+
+  const auto start = Clock::now();
+  auto wall = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  if (observer) observer->on_start(job);
+  auto last_progress = Clock::now();
+
+  try {
+    integrate::initialise(sim);
+    peak.update(sim);
+    sample(scene, result.history, row);
+    if (observer) observer->on_sample(sim, result.history);
+    for (std::int64_t s = 1; s <= job.steps; ++s) {
+      integrate::step(sim);
+      peak.update(sim);
+      if (s % job.history_every == 0 || s == job.steps) {
+        diagnostics::check_health(sim);
+        sample(scene, result.history, row);
+        if (observer) observer->on_sample(sim, result.history);
+      }
+      result.steps_done = s;
+      if ((s & 63) == 0 && observer) {
+        if (observer->cancelled()) {
+          result.status = "cancelled";
+          result.message = "cancelled at step " + std::to_string(s);
+          break;
+        }
+        const auto now = Clock::now();
+        if (now - last_progress > std::chrono::milliseconds(500)) {
+          last_progress = now;
+          Progress p{s, job.steps, sim.time, job.end_s, wall(), 0.0};
+          p.eta_s = p.wall_s * (1.0 / p.fraction() - 1.0);
+          observer->on_progress(p);
+        }
+      }
+    }
+  } catch (const DivergenceError& e) {
+    result.status = "diverged";
+    result.message = e.what();
+  }
+  result.wall_s = wall();
+  if (observer) {
+    Progress p{result.steps_done, job.steps, sim.time, job.end_s, result.wall_s, 0.0};
+    observer->on_progress(p);
+  }
+  result.summary = make_summary(job, result, peak);
+  if (observer) observer->on_finish(job, result);
+  return result;
+}
+
+}  // namespace gearsph

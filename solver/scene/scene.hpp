@@ -1,0 +1,44 @@
+#pragma once
+// A scene: the particles and constraints of one job, plus what the scene
+// itself knows how to measure (its history columns and its analysis, e.g.
+// the plate's period against the thin-plate formula).
+#include <functional>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "solver/core/simulation.hpp"
+#include "solver/run/history.hpp"
+
+namespace gearsph {
+
+struct HistoryColumn {
+  std::string name;  // with unit suffix, e.g. tip_y_m
+  std::function<double(const Simulation&)> value;
+};
+
+struct Scene {
+  Simulation sim;
+  std::string type;
+  std::vector<HistoryColumn> columns;
+  // Case-specific results from the finished (or stopped) run.
+  std::function<nlohmann::json(const History&, const Simulation&)> analyse;
+  // Scene defaults used when the job leaves them open.
+  double default_end_s = 0.0;
+  // What was modelled, for the summary (counts, dimensions, notes).
+  nlohmann::json description = nlohmann::json::object();
+};
+
+// A job that is valid against the schema but cannot be built as asked
+// (e.g. a spacing that leaves fewer than two particles across a plate).
+class JobError : public std::runtime_error {
+ public:
+  JobError(std::string json_pointer, const std::string& message)
+      : std::runtime_error(message), pointer(std::move(json_pointer)) {}
+  std::string pointer;
+};
+
+}  // namespace gearsph

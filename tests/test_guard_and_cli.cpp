@@ -1,0 +1,117 @@
+// The divergence guard (validation.md section 9) and the CLI contract:
+// gearsph run writes summary.json and history.csv with stable keys.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "solver/job/job.hpp"
+#include "solver/run/runner.hpp"
+
+namespace gearsph {
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+json unstable_plate() {
+  // Three times the stable Courant number, deliberately (allow_unstable).
+  return {{"scene", {{"type", "plate"}, {"length_m", 0.1}, {"thickness_m", 0.01}}},
+          {"discretization", {{"spacing_m", 0.002}}},
+          {"time", {{"end_s", 0.01}, {"cfl", 1.6}, {"allow_unstable", true}}}};
+}
+
+TEST(Guard, UnstableRunStopsNamingStepParticleAndQuantity) {
+  PreparedJob job = prepare_job(unstable_plate(), 1);
+  ASSERT_GT(job.time_step.dt, 2.5 * job.time_step.dt_limit);
+  const RunResult r = run_job(job);
+  EXPECT_EQ(r.status, "diverged");
+  EXPECT_LT(r.steps_done, job.steps);
+  EXPECT_NE(r.message.find("diverged at step"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("particle"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find(" = "), std::string::npos) << r.message;  // quantity = value
+  // What was recorded before the blow-up is kept, and says so.
+  EXPECT_GE(r.history.rows(), 1u);
+  EXPECT_EQ(r.summary.at("status"), "diverged");
+  EXPECT_EQ(r.summary.at("message"), r.message);
+}
+
+TEST(Guard, StableRunCompletes) {
+  json job_json = unstable_plate();
+  job_json["time"] = {{"end_s", 0.01}};
+  PreparedJob job = prepare_job(job_json, 1);
+  const RunResult r = run_job(job);
+  EXPECT_EQ(r.status, "completed") << r.message;
+  EXPECT_EQ(r.steps_done, job.steps);
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+int run_cli(const std::string& args) {
+  const std::string cmd = std::string(GEARSPH_BINARY) + " " + args + " 2>/dev/null";
+  const int status = std::system(cmd.c_str());
+  return WEXITSTATUS(status);
+}
+
+TEST(Cli, RunWritesSummaryAndHistory) {
+  const fs::path dir = fs::temp_directory_path() / "gearsph_cli_test";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const json job = {{"name", "cli-plate"},
+                    {"scene", {{"type", "plate"}, {"length_m", 0.1}, {"thickness_m", 0.01}}},
+                    {"discretization", {{"spacing_m", 0.002}}},
+                    {"time", {{"end_s", 0.02}}}};
+  std::ofstream(dir / "job.json") << job.dump();
+  ASSERT_EQ(run_cli("run " + (dir / "job.json").string() + " --out " + (dir / "out").string() +
+                    " --threads 1"),
+            0);
+  const json summary = json::parse(slurp(dir / "out/summary.json"));
+  for (const char* key : {"particles", "steps", "dt_s", "wall_s", "max_von_mises_Pa", "analysis",
+                          "particles_by_body", "status"}) {
+    EXPECT_TRUE(summary.contains(key)) << key;
+  }
+  EXPECT_EQ(summary.at("name"), "cli-plate");
+  EXPECT_TRUE(summary.at("analysis").contains("reference_period_s"));
+  EXPECT_TRUE(summary.at("analysis").contains("period_s"));
+  const std::string csv = slurp(dir / "out/history.csv");
+  const std::string header = csv.substr(0, csv.find('\n'));
+  EXPECT_EQ(header.rfind("time_s,", 0), 0u) << header;
+  EXPECT_NE(header.find("tip_y_m"), std::string::npos) << header;
+  EXPECT_NE(header.find("tip_vy_m_s"), std::string::npos) << header;
+  fs::remove_all(dir);
+}
+
+TEST(Cli, InvalidJobExitsWithTwoAndWritesNothing) {
+  const fs::path dir = fs::temp_directory_path() / "gearsph_cli_bad";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "job.json") << R"({"scene": {"type": "plate", "Vf": -1}})";
+  EXPECT_EQ(run_cli("run " + (dir / "job.json").string() + " --out " + (dir / "out").string()), 2);
+  EXPECT_FALSE(fs::exists(dir / "out/summary.json"));
+  EXPECT_EQ(run_cli("run"), 2);
+  EXPECT_EQ(run_cli("frobnicate"), 2);
+  fs::remove_all(dir);
+}
+
+TEST(Cli, DivergedRunExitsWithThreeAndKeepsItsRecord) {
+  const fs::path dir = fs::temp_directory_path() / "gearsph_cli_diverged";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "job.json") << unstable_plate().dump();
+  EXPECT_EQ(run_cli("run " + (dir / "job.json").string() + " --out " + (dir / "out").string()), 3);
+  const json summary = json::parse(slurp(dir / "out/summary.json"));
+  EXPECT_EQ(summary.at("status"), "diverged");
+  EXPECT_TRUE(fs::exists(dir / "out/history.csv"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace gearsph

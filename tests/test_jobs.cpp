@@ -1,0 +1,167 @@
+// Jobs: the schema's contract (every refusal names the JSON pointer), the
+// defaults, the time-step refusal and what the examples promise.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "solver/job/job.hpp"
+#include "solver/job/json_schema.hpp"
+
+namespace gearsph {
+namespace {
+
+using nlohmann::json;
+
+std::vector<JobIssue> issues_of(const json& job) {
+  try {
+    prepare_job(job, 1);
+  } catch (const InvalidJob& e) {
+    return e.issues;
+  }
+  return {};
+}
+
+bool has_issue(const std::vector<JobIssue>& issues, const std::string& pointer,
+               const std::string& phrase) {
+  for (const JobIssue& i : issues) {
+    if (i.pointer == pointer && i.message.find(phrase) != std::string::npos) return true;
+  }
+  return false;
+}
+
+std::string describe(const std::vector<JobIssue>& issues) {
+  std::ostringstream s;
+  for (const JobIssue& i : issues) s << i.pointer << ": " << i.message << "\n";
+  return s.str();
+}
+
+const json kPlate = {{"scene", {{"type", "plate"}}}, {"time", {{"end_s", 0.001}}}};
+
+TEST(Jobs, SchemaIsValidDraft07ForOurValidator) {
+  EXPECT_NO_THROW(jsonschema::Validator{job_schema()});
+  EXPECT_EQ(job_schema().at("$schema"), "http://json-schema.org/draft-07/schema#");
+}
+
+TEST(Jobs, ExamplesAreValidAndBuild) {
+  const std::filesystem::path dir = std::filesystem::path(GEARSPH_SOURCE_DIR) / "schemas/examples";
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    std::ifstream in(entry.path());
+    std::stringstream text;
+    text << in.rdbuf();
+    const json job = parse_job_text(text.str());
+    EXPECT_NO_THROW(validate_job(job)) << entry.path();
+    ++count;
+  }
+  EXPECT_GE(count, 3);
+}
+
+TEST(Jobs, DefaultsAreFilledFromTheSchema) {
+  const json full = validate_job(kPlate);
+  EXPECT_EQ(full.at("name"), "job");
+  EXPECT_EQ(full.at("method").at("formulation"), "total_lagrangian");
+  EXPECT_EQ(full.at("method").at("gradient_correction"), "quadratic");
+  EXPECT_EQ(full.at("method").at("artificial_viscosity").at("alpha"), 1.0);
+  EXPECT_EQ(full.at("discretization").at("kernel"), "seed_quartic");
+  EXPECT_EQ(full.at("scene").at("length_m"), 0.2);
+  EXPECT_EQ(full.at("scene").at("material").at("E_Pa"), 2e6);
+  EXPECT_FALSE(full.at("time").contains("cfl"));  // neither dt nor cfl: auto step
+}
+
+TEST(Jobs, MalformedJsonIsRefusedWithAPosition) {
+  try {
+    parse_job_text("{\"scene\": {\"type\": \"plate\",}}");
+    FAIL() << "malformed JSON accepted";
+  } catch (const InvalidJob& e) {
+    ASSERT_EQ(e.issues.size(), 1u);
+    EXPECT_EQ(e.issues[0].pointer, "");
+    EXPECT_NE(e.issues[0].message.find("not valid JSON"), std::string::npos);
+    EXPECT_NE(e.issues[0].message.find("line 1"), std::string::npos);
+  }
+}
+
+TEST(Jobs, EveryViolationNamesItsPointer) {
+  json job = kPlate;
+  job["scene"]["type"] = "plat";
+  auto issues = issues_of(job);
+  EXPECT_TRUE(has_issue(issues, "/scene/type", "did you mean \"plate\"")) << describe(issues);
+
+  job = kPlate;
+  job["scene"]["thickness_m"] = -0.02;
+  issues = issues_of(job);
+  EXPECT_TRUE(has_issue(issues, "/scene/thickness_m", "greater than 0")) << describe(issues);
+
+  job = kPlate;
+  job["scene"]["lenght_m"] = 0.3;
+  issues = issues_of(job);
+  EXPECT_TRUE(has_issue(issues, "/scene/lenght_m", "length_m")) << describe(issues);
+
+  job = kPlate;
+  job["discretization"] = {{"kernel", "gaussian"}};
+  issues = issues_of(job);
+  EXPECT_TRUE(has_issue(issues, "/discretization/kernel", "seed_quartic")) << describe(issues);
+
+  job = kPlate;
+  job["scene"]["material"] = {{"E_Pa", 2e11}, {"nu", 0.7}};
+  issues = issues_of(job);
+  EXPECT_TRUE(has_issue(issues, "/scene/material/nu", "at most 0.49")) << describe(issues);
+  EXPECT_TRUE(has_issue(issues, "/scene/material/rho_kg_m3", "is required")) << describe(issues);
+
+  job = kPlate;
+  job["time"] = {{"dt_s", 1e-6}, {"cfl", 0.3}};
+  issues = issues_of(job);
+  EXPECT_TRUE(has_issue(issues, "/time/cfl", "not both")) << describe(issues);
+
+  job = kPlate;
+  job["discretization"] = {{"spacing_m", 0.002}, {"spacing_mm", 2}};
+  issues = issues_of(job);
+  EXPECT_TRUE(has_issue(issues, "/discretization/spacing_mm", "not both")) << describe(issues);
+
+  issues = issues_of(json::array());
+  EXPECT_TRUE(has_issue(issues, "", "object")) << describe(issues);
+}
+
+TEST(Jobs, SceneLimitsAreExplained) {
+  json job = kPlate;
+  job["discretization"] = {{"spacing_m", 0.01}};  // 2 particles across 0.02 m
+  auto issues = issues_of(job);
+  EXPECT_TRUE(has_issue(issues, "/discretization", "across the plate thickness"))
+      << describe(issues);
+
+  job = kPlate;
+  job["scene"]["clamp_length_m"] = 0.002;
+  issues = issues_of(job);
+  EXPECT_TRUE(has_issue(issues, "/scene/clamp_length_m", "kernel support")) << describe(issues);
+}
+
+TEST(Jobs, FixedTimeStepAboveTheLimitIsRefusedWithTheLimit) {
+  json job = kPlate;
+  job["time"]["dt_s"] = 1e-3;
+  const auto issues = issues_of(job);
+  ASSERT_EQ(issues.size(), 1u) << describe(issues);
+  EXPECT_EQ(issues[0].pointer, "/time/dt_s");
+  EXPECT_NE(issues[0].message.find("above the stable limit"), std::string::npos);
+  EXPECT_NE(issues[0].message.find("dt <= 1.5"), std::string::npos) << issues[0].message;
+
+  job["time"]["dt_s"] = 1e-5;  // below the limit of ~1.5e-5 s
+  EXPECT_NO_THROW(prepare_job(job, 1));
+
+  job["time"].erase("dt_s");
+  job["time"]["cfl"] = 2.0;
+  const auto cfl_issues = issues_of(job);
+  ASSERT_EQ(cfl_issues.size(), 1u);
+  EXPECT_EQ(cfl_issues[0].pointer, "/time/cfl");
+  EXPECT_NE(cfl_issues[0].message.find("Courant number"), std::string::npos);
+}
+
+TEST(Jobs, AutomaticStepIsAFractionOfTheLimit) {
+  const PreparedJob job = prepare_job(kPlate, 1);
+  EXPECT_EQ(job.time_step.chosen_by, "auto");
+  EXPECT_NEAR(job.time_step.dt, kAutoStepFraction * job.time_step.dt_limit, 1e-18);
+  EXPECT_GT(job.steps, 0);
+}
+
+}  // namespace
+}  // namespace gearsph

@@ -1,0 +1,37 @@
+// The validation.md cases (sections 2, 4, 5), quick variants, with the
+// job defaults and every kernel: the same list `gearsph validate` reports.
+#include <gtest/gtest.h>
+
+#include "solver/job/job.hpp"
+#include "solver/run/runner.hpp"
+#include "solver/validation/cases.hpp"
+
+namespace gearsph {
+namespace {
+
+class ValidationCase : public ::testing::TestWithParam<validation::Case> {};
+
+TEST_P(ValidationCase, MatchesItsReference) {
+  const validation::Case& c = GetParam();
+  PreparedJob job = prepare_job(c.job, 2);
+  const RunResult result = run_job(job);
+  ASSERT_EQ(result.status, "completed") << result.message;
+  ASSERT_GE(result.steps_done, 100) << "a validation run must resolve its time span";
+  const validation::Measurement m = c.measure(result.summary, c.tolerance);
+  EXPECT_TRUE(m.pass) << c.id << ": measured " << m.measured << ", reference " << m.reference
+                      << ", error " << m.error << " (tolerance " << c.tolerance << ") " << m.note;
+  RecordProperty("measured", std::to_string(m.measured));
+  RecordProperty("error", std::to_string(m.error));
+}
+
+INSTANTIATE_TEST_SUITE_P(Quick, ValidationCase, ::testing::ValuesIn(validation::cases(true)),
+                         [](const ::testing::TestParamInfo<validation::Case>& p) {
+                           std::string name = p.param.id;
+                           for (char& ch : name) {
+                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+                           }
+                           return name;
+                         });
+
+}  // namespace
+}  // namespace gearsph
