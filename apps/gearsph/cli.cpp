@@ -68,16 +68,4 @@ std::string read_file(const std::string& path) {
   return s.str();
 }
 
-void write_file_atomic(const std::string& path, const std::string& content) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot write " + tmp);
-    out << content;
-    out.flush();
-    if (!out) throw std::runtime_error("failed writing " + tmp);
-  }
-  std::filesystem::rename(tmp, path);
-}
-
 }  // namespace gearsph::cli

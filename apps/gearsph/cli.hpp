@@ -22,8 +22,6 @@ class Args {
 };
 
 std::string read_file(const std::string& path);
-// Writes via a temporary file and rename, so readers never see half a file.
-void write_file_atomic(const std::string& path, const std::string& content);
 
 int cmd_run(Args& args);
 int cmd_validate(Args& args);

@@ -5,7 +5,7 @@
 #include "apps/gearsph/cli.hpp"
 #include "apps/gearsph/progress.hpp"
 #include "solver/job/job.hpp"
-#include "solver/run/runner.hpp"
+#include "solver/run/execute.hpp"
 
 namespace gearsph::cli {
 
@@ -46,11 +46,12 @@ int cmd_run(Args& args) {
         job.time_step.courant, job.time_step.courant_limit, sim.threads);
   }
   ProgressPrinter printer(quiet);
-  RunResult result = run_job(job, &printer);
-  write_file_atomic(*out + "/history.csv", result.history.to_csv());
-  write_file_atomic(*out + "/summary.json", result.summary.dump(2) + "\n");
+  ExecuteOptions options;
+  options.threads = threads;
+  options.observer = &printer;
+  const RunResult result = execute_prepared(job, *out, options).run;
   if (!quiet) {
-    std::fprintf(stderr, "gearsph run: %s in %.2f s; wrote %s/summary.json and history.csv\n",
+    std::fprintf(stderr, "gearsph run: %s in %.2f s; results in %s\n",
                  result.status.c_str(), result.wall_s, out->c_str());
   }
   if (result.status == "diverged") {

@@ -5,6 +5,7 @@
 
 #include "apps/gearsph/cli.hpp"
 #include "solver/job/job.hpp"
+#include "solver/run/execute.hpp"
 #include "solver/run/runner.hpp"
 #include "solver/validation/cases.hpp"
 

@@ -158,6 +158,11 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads) {
   }
   const auto points = job.at("output").at("history_points").get<std::int64_t>();
   out.history_every = std::max<std::int64_t>(1, out.steps / points);
+  const auto frames = job.at("output").at("frames").get<std::int64_t>();
+  if (frames > 0) {
+    out.snapshot_every = std::max<std::int64_t>(1, out.steps / frames);
+    out.frames = 1 + out.steps / out.snapshot_every + (out.steps % out.snapshot_every ? 1 : 0);
+  }
   return out;
 }
 

@@ -39,6 +39,8 @@ struct PreparedJob {
   double end_s = 0.0;
   std::int64_t steps = 0;
   std::int64_t history_every = 1;
+  std::int64_t snapshot_every = 0;  // 0: no snapshots
+  std::int64_t frames = 0;          // snapshots the run will write (with frame 0 and the last)
 };
 
 // Validates, builds the scene, chooses dt. `threads` <= 0: the job's or all cores.

@@ -67,7 +67,11 @@ RunResult run_job(PreparedJob& job, RunObserver* observer) {
     integrate::initialise(sim);
     peak.update(sim);
     sample(scene, result.history, row);
-    if (observer) observer->on_sample(sim, result.history);
+    std::int64_t frame = 0;
+    if (observer) {
+      observer->on_sample(sim, result.history);
+      if (job.snapshot_every > 0) observer->on_snapshot(sim, frame++);
+    }
     for (std::int64_t s = 1; s <= job.steps; ++s) {
       integrate::step(sim);
       peak.update(sim);
@@ -75,6 +79,9 @@ RunResult run_job(PreparedJob& job, RunObserver* observer) {
         diagnostics::check_health(sim);
         sample(scene, result.history, row);
         if (observer) observer->on_sample(sim, result.history);
+      }
+      if (observer && job.snapshot_every > 0 && (s % job.snapshot_every == 0 || s == job.steps)) {
+        observer->on_snapshot(sim, frame++);
       }
       result.steps_done = s;
       if ((s & 63) == 0 && observer) {

@@ -4,6 +4,7 @@
 // failed run that keeps everything recorded up to that point.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -35,9 +36,44 @@ class RunObserver {
   virtual void on_start(const PreparedJob&) {}
   // After each history sample (the new row is the last one).
   virtual void on_sample(const Simulation&, const History&) {}
+  // A snapshot of the whole particle state: frame 0 is the initial state,
+  // then every PreparedJob::snapshot_every steps and the last step.
+  virtual void on_snapshot(const Simulation&, std::int64_t /*frame*/) {}
   virtual void on_progress(const Progress&) {}
   virtual bool cancelled() { return false; }
   virtual void on_finish(const PreparedJob&, const RunResult&) {}
+};
+
+// Forwards every hook to several observers, in order.
+class ObserverList : public RunObserver {
+ public:
+  void add(RunObserver* o) {
+    if (o) list_.push_back(o);
+  }
+  void on_start(const PreparedJob& j) override {
+    for (auto* o : list_) o->on_start(j);
+  }
+  void on_sample(const Simulation& s, const History& h) override {
+    for (auto* o : list_) o->on_sample(s, h);
+  }
+  void on_snapshot(const Simulation& s, std::int64_t f) override {
+    for (auto* o : list_) o->on_snapshot(s, f);
+  }
+  void on_progress(const Progress& p) override {
+    for (auto* o : list_) o->on_progress(p);
+  }
+  bool cancelled() override {
+    for (auto* o : list_) {
+      if (o->cancelled()) return true;
+    }
+    return false;
+  }
+  void on_finish(const PreparedJob& j, const RunResult& r) override {
+    for (auto* o : list_) o->on_finish(j, r);
+  }
+
+ private:
+  std::vector<RunObserver*> list_;
 };
 
 RunResult run_job(PreparedJob& job, RunObserver* observer = nullptr);
