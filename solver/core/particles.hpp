@@ -46,6 +46,8 @@ struct Particles {
   std::vector<double> qxx, qxy, qyx, qyy;
   std::vector<double> qqx0, qqx1, qqx2, qqy0, qqy1, qqy2;
   std::vector<double> ext_ax, ext_ay;  // external (contact, load) accel. this step
+  std::vector<double> load_ax, load_ay;        // applied loads, as accelerations (times the ramp)
+  std::vector<double> contact_ax, contact_ay;  // contact part of ext_ax/ext_ay, last step
 
   void resize(std::size_t count);
   void add(double px, double py, double m, double density, int body_index, int motion_index);

@@ -10,6 +10,8 @@
 #include "solver/core/motion.hpp"
 #include "solver/core/particles.hpp"
 #include "solver/neighbours/neighbour_list.hpp"
+#include "solver/physics/contact.hpp"
+#include "solver/physics/contact.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 
 namespace gearsph {
@@ -42,8 +44,16 @@ struct Simulation {
   Box domain;  // leaving it stops the run (divergence guard)
   int threads = 1;
 
-  NeighbourList neighbours;  // kernel interactions (updated Lagrangian)
-  ReferencePairs reference;  // fixed pairs (total Lagrangian)
+  NeighbourList neighbours;    // kernel interactions (updated Lagrangian)
+  ReferencePairs reference;    // fixed pairs (total Lagrangian)
+  ContactConfig contact;       // between bodies
+  NeighbourList contacts;      // contact candidates: pairs from different bodies
+  ContactState contact_state;  // what the contact did in the last step
+  // Mass-proportional damping a = -damping v for quasi-static (dynamic
+  // relaxation) scenes; 0 for dynamics [1/s].
+  double damping_1_s = 0.0;
+  // Applied loads grow linearly from zero over this time (0: at once) [s].
+  double load_ramp_s = 0.0;
   EnergyLedger energy;
 
   double h() const { return discretization.h(); }

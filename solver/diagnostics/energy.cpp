@@ -30,6 +30,7 @@ EnergyState energy(const Simulation& sim) {
       e.elastic += w * p.mass[i] / p.rho[i];
     }
   }
+  e.contact = sim.contact_state.stored_energy;
   e.dissipated = sim.energy.dissipated;
   e.drive_work = sim.energy.drive_work;
   e.external_work = sim.energy.external_work;

@@ -10,12 +10,15 @@ namespace diagnostics {
 struct EnergyState {
   double kinetic = 0.0;
   double elastic = 0.0;  // strain energy of the stress state
+  double contact = 0.0;  // penalty energy stored in contact pairs
   double dissipated = 0.0;
   double drive_work = 0.0;
   double external_work = 0.0;
-  // kinetic + elastic + dissipated - drive work - external work: constant
+  // kinetic + elastic + contact + dissipated - drive work - external work: constant
   // for an exact integrator.
-  double total() const { return kinetic + elastic + dissipated - drive_work - external_work; }
+  double total() const {
+    return kinetic + elastic + contact + dissipated - drive_work - external_work;
+  }
 };
 
 EnergyState energy(const Simulation& sim);

@@ -22,13 +22,49 @@ bool total_lagrangian(const Simulation& sim) {
   return sim.method.formulation == Formulation::TotalLagrangian;
 }
 
+bool penalty_contact(const Simulation& sim) {
+  return sim.bodies.size() > 1 && (sim.contact.model == ContactModel::SeedPenalty ||
+                                   sim.contact.model == ContactModel::Hertz);
+}
+
 void refresh_neighbours(Simulation& sim) {
-  if (total_lagrangian(sim)) return;  // fixed reference pairs
-  if (sim.neighbours.entries() > 0 && !sim.neighbours.needs_rebuild(sim.particles)) return;
-  const double radius = kernel_support(sim.discretization.kernel) * sim.h();
-  sim.neighbours.set_skin(kSkinOverDx * sim.discretization.dx);
-  sim.neighbours.build(sim.particles, radius + sim.neighbours.skin(), PairSelection::SameBody,
-                       /*reference=*/false, sim.threads);
+  const double skin = kSkinOverDx * sim.discretization.dx;
+  if (!total_lagrangian(sim) &&
+      (sim.neighbours.builds() == 0 || sim.neighbours.needs_rebuild(sim.particles))) {
+    // Kernel interactions stay inside a body unless the contact model is the
+    // kernel itself (the coupling whose adhesion the paper avoids).
+    const PairSelection selection = sim.contact.model == ContactModel::Kernel
+                                        ? PairSelection::AnyBody
+                                        : PairSelection::SameBody;
+    const double radius = kernel_support(sim.discretization.kernel) * sim.h();
+    sim.neighbours.set_skin(skin);
+    sim.neighbours.build(sim.particles, radius + skin, selection, /*reference=*/false,
+                         sim.threads);
+  }
+  if (penalty_contact(sim) &&
+      (sim.contacts.builds() == 0 || sim.contacts.needs_rebuild(sim.particles))) {
+    sim.contacts.set_skin(skin);
+    sim.contacts.build(sim.particles, sim.contact.r0_over_dx * sim.discretization.dx + skin,
+                       PairSelection::OtherBody, /*reference=*/false, sim.threads);
+  }
+}
+
+// Accelerations from outside the bodies' own stress: applied loads, contact
+// and (quasi-static scenes) mass-proportional damping.
+void external_forces(Simulation& sim, double dt) {
+  Particles& p = sim.particles;
+  const std::size_t n = p.n;
+  const double c = sim.damping_1_s;
+  const double ramp = load_ramp(sim);
+  double dissipated = 0.0;
+#pragma omp parallel for num_threads(sim.threads) schedule(static) reduction(+ : dissipated)
+  for (std::size_t i = 0; i < n; ++i) {
+    p.ext_ax[i] = ramp * p.load_ax[i] - c * p.vx[i];
+    p.ext_ay[i] = ramp * p.load_ay[i] - c * p.vy[i];
+    dissipated += c * p.mass[i] * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i]) * dt;
+  }
+  sim.energy.dissipated += dissipated;
+  if (penalty_contact(sim)) physics::contact_forces(sim, dt);
 }
 
 // Rates and accelerations at the current positions; stress advanced by dt.
@@ -46,12 +82,10 @@ void forces(Simulation& sim, double dt) {
 }  // namespace
 
 void initialise(Simulation& sim) {
-  if (total_lagrangian(sim)) {
-    physics::total_lagrangian_setup(sim);
-  } else {
-    refresh_neighbours(sim);
-  }
+  if (total_lagrangian(sim)) physics::total_lagrangian_setup(sim);
+  refresh_neighbours(sim);
   forces(sim, 0.0);  // accelerations at t = 0, stress unchanged
+  external_forces(sim, 0.0);
 }
 
 void step(Simulation& sim) {
@@ -61,10 +95,12 @@ void step(Simulation& sim) {
   sim.time += dt;
   ++sim.step;
   if (outside > 0) diagnostics::throw_divergence(sim);  // names particle + quantity
-  refresh_neighbours(sim);                              // Verlet list, skin used up?
+  refresh_neighbours(sim);                              // Verlet lists, skin used up?
   forces(sim, dt);                                      // rho, S at n+1; a^{n+1}
+  external_forces(sim, dt);                             // loads, contact, damping
   kick(sim, 0.5 * dt, false);                           // v^{n+1}
   sim.energy.drive_work += dt * drive_power(sim);
+  sim.energy.external_work += dt * load_power(sim);
 }
 
 }  // namespace gearsph::integrate

@@ -1,5 +1,6 @@
 #include "solver/integrate/motion.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "solver/core/simulation.hpp"
@@ -91,12 +92,28 @@ double drive_power(const Simulation& sim) {
   for (std::size_t i = 0; i < p.n; ++i) {
     const Motion& m = sim.motions[p.motion[i]];
     if (m.kind == Motion::Kind::Free) continue;
+    // The constraint supplies what the internal, contact and load forces
+    // would otherwise change in the prescribed motion.
     const double ax = p.ax[i] + p.ext_ax[i], ay = p.ay[i] + p.ext_ay[i];
     if (m.kind == Motion::Kind::GuidedX) {
       power -= p.mass[i] * ay * p.vy[i];  // v_y = 0: the guide does no work
     } else {
       power -= p.mass[i] * (ax * p.vx[i] + ay * p.vy[i]);
     }
+  }
+  return power;
+}
+
+double load_ramp(const Simulation& sim) {
+  return sim.load_ramp_s > 0.0 ? std::min(1.0, sim.time / sim.load_ramp_s) : 1.0;
+}
+
+double load_power(const Simulation& sim) {
+  const Particles& p = sim.particles;
+  const double ramp = load_ramp(sim);
+  double power = 0.0;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    power += ramp * p.mass[i] * (p.load_ax[i] * p.vx[i] + p.load_ay[i] * p.vy[i]);
   }
   return power;
 }

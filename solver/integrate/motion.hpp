@@ -16,5 +16,9 @@ std::size_t drift(Simulation& sim, double dt);
 // Power delivered by the constraints: sum over constrained components of
 // -m a . v (the reaction the drive supplies to hold the prescribed motion).
 double drive_power(const Simulation& sim);
+// Power of the applied loads (load_ax, load_ay) on the particles.
+double load_power(const Simulation& sim);
+// Fraction of the applied loads acting at sim.time (linear ramp).
+double load_ramp(const Simulation& sim);
 }  // namespace integrate
 }  // namespace gearsph

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "solver/integrate/integrator.hpp"
+#include "solver/physics/contact.hpp"
 #include "solver/job/json_schema.hpp"
 #include "solver/scene/builders.hpp"
 
@@ -54,6 +55,18 @@ Discretization read_discretization(const nlohmann::json& d) {
   return out;
 }
 
+ContactConfig read_contact(const nlohmann::json& c) {
+  ContactConfig out;
+  const std::string model = c.at("model").get<std::string>();
+  out.model = model == "kernel"  ? ContactModel::Kernel
+              : model == "hertz" ? ContactModel::Hertz
+                                 : ContactModel::SeedPenalty;
+  out.D = c.at("D").get<double>();
+  out.damping_ratio = c.at("damping_ratio").get<double>();
+  out.r0_over_dx = c.at("r0_over_dx").get<double>();
+  return out;
+}
+
 MethodConfig read_method(const nlohmann::json& m) {
   MethodConfig out;
   out.formulation = m.at("formulation").get<std::string>() == "total_lagrangian"
@@ -84,6 +97,8 @@ Scene build_scene(const nlohmann::json& job, const Discretization& disc) {
   if (type == "plate") return scenes::build_plate(in);
   if (type == "strip_wave") return scenes::build_strip_wave(in);
   if (type == "spinning_disk") return scenes::build_spinning_disk(in);
+  if (type == "bar_impact") return scenes::build_bar_impact(in);
+  if (type == "hertz") return scenes::build_hertz(in);
   refuse("/scene/type", "is not a scene this build knows");
 }
 
@@ -135,6 +150,14 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads) {
   }
   Simulation& sim = out.scene.sim;
   sim.method = read_method(job.at("method"));
+  sim.contact = read_contact(job.at("method").at("contact"));
+  if (sim.contact.model == ContactModel::Kernel &&
+      sim.method.formulation == Formulation::TotalLagrangian) {
+    refuse("/method/contact/model",
+           "kernel coupling between bodies needs the updated-Lagrangian formulation (the "
+           "total-Lagrangian kernel lives on each body's reference configuration); set "
+           "/method/formulation to \"updated_lagrangian\"");
+  }
   const int job_threads = job.at("threads").get<int>();
   sim.threads = threads > 0 ? threads : job_threads > 0 ? job_threads : omp_get_max_threads();
 
@@ -144,6 +167,8 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads) {
   if (t.contains("dt_s")) request.dt_s = t.at("dt_s").get<double>();
   if (t.contains("cfl")) request.cfl = t.at("cfl").get<double>();
   request.allow_unstable = t.at("allow_unstable").get<bool>();
+  request.extra_limit_s = physics::contact_time_step_limit(sim);
+  request.extra_name = "contact stiffness";
   try {
     out.time_step = choose_time_step(sim, request);
   } catch (const TimeStepError& e) {

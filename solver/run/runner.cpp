@@ -25,6 +25,11 @@ History make_history(const Scene& scene) {
                                    "energy_balance_J_per_m",
                                    "momentum_x_kg_m_s",
                                    "momentum_y_kg_m_s"};
+  if (scene.sim.bodies.size() > 1) {
+    cols.push_back("contact_pairs");
+    cols.push_back("max_penetration_m");
+    for (const Body& b : scene.sim.bodies) cols.push_back("contact_force_" + b.name + "_N_per_m");
+  }
   for (const HistoryColumn& c : scene.columns) cols.push_back(c.name);
   return History(cols);
 }
@@ -43,6 +48,14 @@ void sample(const Scene& scene, History& history, std::vector<double>& row) {
   row.push_back(e.total());
   row.push_back(m.px);
   row.push_back(m.py);
+  if (sim.bodies.size() > 1) {
+    const ContactState& cs = sim.contact_state;
+    row.push_back(static_cast<double>(cs.active_pairs));
+    row.push_back(cs.max_penetration);
+    for (std::size_t b = 0; b < sim.bodies.size(); ++b) {
+      row.push_back(b < cs.force_x.size() ? std::hypot(cs.force_x[b], cs.force_y[b]) : 0.0);
+    }
+  }
   for (const HistoryColumn& c : scene.columns) row.push_back(c.value(sim));
   history.add_row(row);
 }

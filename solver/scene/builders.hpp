@@ -19,11 +19,14 @@ Material read_material(const nlohmann::json& material);
 Scene build_plate(const SceneInput& in);          // validation.md section 5
 Scene build_strip_wave(const SceneInput& in);     // validation.md section 2
 Scene build_spinning_disk(const SceneInput& in);  // validation.md section 4
+Scene build_bar_impact(const SceneInput& in);     // validation.md section 3
+Scene build_hertz(const SceneInput& in);          // validation.md section 6
 
 // Common helpers for builders.
 void add_body(Simulation& sim, const std::string& name, const Material& material);
-// Adds one particle to the last body (mass rho0 dx^2 per unit thickness).
-std::size_t add_particle(Simulation& sim, double x, double y, int motion);
+// Adds one particle to the last body (mass rho0 dx^2 per unit thickness, or
+// rho0 * volume when a volume is given).
+std::size_t add_particle(Simulation& sim, double x, double y, int motion, double volume = 0.0);
 // Closes the last body's particle range.
 void end_body(Simulation& sim);
 // Domain: the particles' bounding box grown by `margin` on every side.

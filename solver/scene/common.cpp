@@ -20,11 +20,12 @@ void add_body(Simulation& sim, const std::string& name, const Material& material
   sim.bodies.push_back(b);
 }
 
-std::size_t add_particle(Simulation& sim, double x, double y, int motion) {
+std::size_t add_particle(Simulation& sim, double x, double y, int motion, double volume) {
   const Material& mat = sim.bodies.back().material;
   const double dx = sim.discretization.dx;
   const std::size_t i = sim.particles.n;
-  sim.particles.add(x, y, mat.rho0 * dx * dx, mat.rho0, static_cast<int>(sim.bodies.size() - 1),
+  const double v = volume > 0.0 ? volume : dx * dx;
+  sim.particles.add(x, y, mat.rho0 * v, mat.rho0, static_cast<int>(sim.bodies.size() - 1),
                     motion);
   sim.particles.cs[i] = mat.p_wave_speed();
   return i;

@@ -1,0 +1,40 @@
+#include "solver/geometry/basic_rack.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace gearsph::geometry {
+
+double BasicRack::straight_flank_depth() const {
+  return dedendum() - root_radius() * (1.0 - std::sin(pressure_angle_rad));
+}
+
+// Fillet centre at depth h_fP - rho on the space side of the flank; it reaches
+// the space centre line when (p/4 + w/2) - (h_fP - rho) tan(alpha) = rho / cos(alpha).
+double BasicRack::max_root_radius(double widening) const {
+  const double a = pressure_angle_rad;
+  const double half_space_at_root = pitch() / 4.0 + widening / 2.0 - dedendum() * std::tan(a);
+  return half_space_at_root * std::cos(a) / (1.0 - std::sin(a));
+}
+
+void BasicRack::validate(double widening) const {
+  auto fail = [](const std::string& what) {
+    throw std::invalid_argument("basic rack profile: " + what);
+  };
+  if (!(module_m > 0.0)) fail("module must be positive");
+  if (!(pressure_angle_rad > 0.0 && pressure_angle_rad < std::numbers::pi / 4.0)) {
+    fail("pressure angle must lie in (0, 45) degrees");
+  }
+  if (!(addendum_coef > 0.0)) fail("addendum coefficient must be positive");
+  if (!(dedendum_coef >= addendum_coef)) fail("dedendum must not be shorter than the addendum");
+  if (!(root_radius_coef >= 0.0)) fail("root fillet radius must not be negative");
+  if (root_radius() > max_root_radius(widening)) {
+    fail("root fillet radius " + std::to_string(root_radius_coef) +
+         " m does not fit the space (largest " +
+         std::to_string(max_root_radius(widening) / module_m) + " m)");
+  }
+  if (straight_flank_depth() <= -addendum()) fail("fillets leave no straight flank");
+}
+
+}  // namespace gearsph::geometry

@@ -1,0 +1,35 @@
+#pragma once
+// Puts a pinion (gear frame, gear_profile.hpp) and a rack (rack frame,
+// rack_profile.hpp) into one world frame, rack below the pinion, in mesh.
+//
+// Geometry of a rack and pinion pair (ISO 21771:2007; the rack is never
+// shifted): the rack's datum line sits at the centre distance a = r + x m
+// below the pinion centre, the same place as the datum line of the cutter
+// that generated the pinion. The rolling (operating pitch) line of the rack is
+// the line tangent to the pinion's pitch circle, r below the centre, i.e. x m
+// below the rack datum; the working pressure angle is alpha for any shift.
+// Rolling without slip: a rack displacement d along +x turns the pinion by
+// d / r counter-clockwise (the paper's clockwise pinion drives the rack -x).
+//
+// Phase: at travel 0, pinion tooth k points straight down (-y) and sits in the
+// rack space i, centred between rack teeth i - 1 and i. This is the position
+// in which the cutter cut that tooth, so without backlash allowances both of
+// its flanks touch the rack; with allowances the play is shared equally.
+#include "solver/geometry/gear_profile.hpp"
+#include "solver/geometry/polygon.hpp"
+#include "solver/geometry/rack_profile.hpp"
+
+namespace gearsph::geometry {
+
+struct MeshPlacement {
+  Transform pinion;  // gear frame -> world
+  Transform rack;    // rack frame -> world
+  double centre_distance = 0.0;  // pinion centre to rack datum line, r + x m
+  double rolling_line_y = 0.0;   // world y of the rack's rolling line
+};
+
+MeshPlacement place_in_mesh(const PinionGeometry& pinion, const RackGeometry& rack,
+                            Point pinion_centre, int pinion_tooth, int rack_space,
+                            double travel_m = 0.0);
+
+}  // namespace gearsph::geometry

@@ -1,0 +1,144 @@
+#include "solver/physics/contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "solver/core/simulation.hpp"
+#include "solver/physics/contact_hertz.hpp"
+#include "solver/physics/contact_seed_penalty.hpp"
+
+namespace gearsph {
+
+const char* contact_model_name(ContactModel m) {
+  switch (m) {
+    case ContactModel::SeedPenalty:
+      return "seed_penalty";
+    case ContactModel::Hertz:
+      return "hertz";
+    case ContactModel::Kernel:
+      return "kernel";
+    case ContactModel::None:
+      break;
+  }
+  return "none";
+}
+
+namespace physics {
+
+namespace {
+
+// Plane-strain contact modulus of two materials (Johnson 1985, eq. 4.23 form).
+double contact_modulus(const Material& a, const Material& b) {
+  return 1.0 / ((1.0 - a.nu * a.nu) / a.E + (1.0 - b.nu * b.nu) / b.E);
+}
+
+// Most partners a particle has across a flat interface within r0 = dx on a
+// square lattice (three: straight across and the two diagonals are at
+// sqrt(2) dx, so within 1.5 dx at most 3 count).
+constexpr double kPartnersAtOnce = 3.0;
+
+}  // namespace
+
+double contact_time_step_limit(const Simulation& sim) {
+  const ContactConfig& c = sim.contact;
+  if (c.model != ContactModel::SeedPenalty && c.model != ContactModel::Hertz) return 0.0;
+  if (sim.bodies.size() < 2) return 0.0;
+  const double dx = sim.discretization.dx, r0 = c.r0_over_dx * dx;
+  double omega2 = 0.0;
+  for (std::size_t a = 0; a < sim.bodies.size(); ++a) {
+    for (std::size_t b = a + 1; b < sim.bodies.size(); ++b) {
+      const Material &ma = sim.bodies[a].material, &mb = sim.bodies[b].material;
+      const double e_star = contact_modulus(ma, mb);
+      const double va = dx * dx, vb = dx * dx;
+      const double vol = 2.0 * va * vb / (va + vb);
+      // Stiffness at the deepest overlap we tolerate (r0/2) for Hertz; the
+      // linear law has one stiffness.
+      const double k = c.model == ContactModel::SeedPenalty
+                           ? seed_penalty(c.D, e_star, vol, r0, 0.0).stiffness
+                           : hertz_penalty(e_star, dx, 0.5 * r0).stiffness;
+      const double inv_m = 1.0 / (ma.rho0 * va) + 1.0 / (mb.rho0 * vb);
+      omega2 = std::max(omega2, kPartnersAtOnce * k * inv_m);
+    }
+  }
+  return omega2 > 0.0 ? 2.0 / std::sqrt(omega2) : 0.0;
+}
+
+void contact_forces(Simulation& sim, double dt) {
+  Particles& p = sim.particles;
+  const NeighbourList& nl = sim.contacts;
+  const ContactConfig& c = sim.contact;
+  ContactState& state = sim.contact_state;
+  const std::size_t n_bodies = sim.bodies.size();
+  state.force_x.assign(n_bodies, 0.0);
+  state.force_y.assign(n_bodies, 0.0);
+  state.active_pairs = 0;
+  state.max_penetration = 0.0;
+  state.stored_energy = 0.0;
+  if (c.model != ContactModel::SeedPenalty && c.model != ContactModel::Hertz) return;
+
+  const double dx = sim.discretization.dx, r0 = c.r0_over_dx * dx;
+  const std::size_t n = p.n;
+  constexpr int kMaxBodies = 8;
+  double fx_body[kMaxBodies] = {}, fy_body[kMaxBodies] = {};
+  std::int64_t active = 0;
+  double deepest = 0.0, stored = 0.0, dissipated = 0.0;
+
+#pragma omp parallel for num_threads(sim.threads) schedule(static) \
+    reduction(+ : active, stored, dissipated, fx_body[:kMaxBodies], fy_body[:kMaxBodies]) \
+    reduction(max : deepest)
+  for (std::size_t i = 0; i < n; ++i) {
+    const Material& mi = sim.material_of(i);
+    const double vi = p.mass[i] / p.rho[i];
+    double fx = 0.0, fy = 0.0;
+    for (std::uint32_t k = nl.rows[i]; k < nl.rows[i + 1]; ++k) {
+      const std::uint32_t j = nl.j[k];
+      const double dxij = p.x[i] - p.x[j], dyij = p.y[i] - p.y[j];
+      const double r2 = dxij * dxij + dyij * dyij;
+      if (r2 >= r0 * r0) continue;
+      const double r = std::sqrt(r2), overlap = r0 - r;
+      const double nx = dxij / r, ny = dyij / r;
+      const Material& mj = sim.material_of(j);
+      const double e_star = contact_modulus(mi, mj);
+      const double vj = p.mass[j] / p.rho[j];
+      const double vol = 2.0 * vi * vj / (vi + vj);
+      const PairLaw law = c.model == ContactModel::SeedPenalty
+                              ? seed_penalty(c.D, e_star, vol, r0, overlap)
+                              : hertz_penalty(e_star, dx, overlap);
+      // Dashpot on the normal approach speed, as a fraction of critical
+      // damping of the pair oscillator; the total never pulls (no adhesion).
+      const double vn = (p.vx[i] - p.vx[j]) * nx + (p.vy[i] - p.vy[j]) * ny;  // > 0 separating
+      const double m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+      const double damper = 2.0 * c.damping_ratio * std::sqrt(law.stiffness * m_eff);
+      const double f = std::max(0.0, law.force - damper * vn);
+      fx += f * nx;
+      fy += f * ny;
+      // Each pair is seen from both ends: count its energy and the pair once.
+      if (i < j) {
+        ++active;
+        stored += law.energy;
+        dissipated += (f - law.force) * -vn * dt;  // dashpot power times dt
+      }
+      deepest = std::max(deepest, overlap);
+    }
+    p.contact_ax[i] = fx / p.mass[i];
+    p.contact_ay[i] = fy / p.mass[i];
+    p.ext_ax[i] += p.contact_ax[i];
+    p.ext_ay[i] += p.contact_ay[i];
+    const int b = p.body[i];
+    if (b < kMaxBodies) {
+      fx_body[b] += fx;
+      fy_body[b] += fy;
+    }
+  }
+  for (std::size_t b = 0; b < n_bodies && b < static_cast<std::size_t>(kMaxBodies); ++b) {
+    state.force_x[b] = fx_body[b];
+    state.force_y[b] = fy_body[b];
+  }
+  state.active_pairs = active;
+  state.max_penetration = deepest;
+  state.stored_energy = stored;
+  sim.energy.dissipated += dissipated;
+}
+
+}  // namespace physics
+}  // namespace gearsph

@@ -1,0 +1,55 @@
+#pragma once
+// Contact between bodies (method.md, "the paper's modified interaction
+// force"). Particles of different bodies do not interact through the kernel
+// unless the model is `kernel`; instead a pair closer than r0 feels a
+// repulsive force along the line of centres, which is zero for r >= r0, so
+// it can never pull: bodies cannot stick when they separate.
+//
+// Every model computes the pair force F_ij from quantities symmetric in
+// (i, j), so F_ji = -F_ij and momentum is conserved to round-off.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace gearsph {
+
+struct Simulation;
+
+enum class ContactModel {
+  SeedPenalty,  // the paper's force, linear in the overlap (contact_seed_penalty.hpp)
+  Hertz,        // a Hertz-type penalty, overlap^(3/2) (contact_hertz.hpp)
+  Kernel,       // bodies coupled through the SPH sums (shows the paper's adhesion)
+  None,         // bodies pass through each other (only for single-body scenes)
+};
+
+const char* contact_model_name(ContactModel m);
+
+struct ContactConfig {
+  ContactModel model = ContactModel::SeedPenalty;
+  double D = 1.0;               // dimensionless stiffness coefficient of the paper's force
+  double damping_ratio = 0.0;   // normal dashpot, fraction of critical for one pair
+  double r0_over_dx = 1.0;      // interaction range r0 (the paper: the initial spacing)
+};
+
+// What the contact did in the last step.
+struct ContactState {
+  std::int64_t active_pairs = 0;
+  double max_penetration = 0.0;  // max (r0 - r) over active pairs [m]
+  // Total contact force on each body [N per metre of thickness].
+  std::vector<double> force_x, force_y;
+  double stored_energy = 0.0;  // penalty energy in the active pairs [J/m]
+};
+
+namespace physics {
+
+// The pair stiffness dF/d(overlap) at zero overlap... for the time-step bound:
+// the stiffest contact oscillator, omega^2 = k (1/m_i + 1/m_j) times the
+// number of partners a particle can have within r0.
+double contact_time_step_limit(const Simulation& sim);
+
+// Adds contact accelerations to ext_ax/ext_ay (which the caller zeroed) and
+// fills sim.contact_state; dissipated energy goes to the ledger.
+void contact_forces(Simulation& sim, double dt);
+
+}  // namespace physics
+}  // namespace gearsph

@@ -1,0 +1,193 @@
+// Hertz line contact (validation.md section 6): an elastic cylinder of radius
+// R pressed on a flat block by a line load P' (plane strain). Theory
+// (Johnson 1985, sec. 4.2): 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2,
+//   half-width a = sqrt(4 P' R / (pi E*)),  peak pressure p0 = 2 P' / (pi a),
+//   p(x) = p0 sqrt(1 - x^2/a^2).
+// Only a cap of the cylinder is modelled (its height a multiple of a: the
+// contact stresses decay within a few a), loaded by a uniform traction on
+// its flat top; the block's bottom rows are fixed. The load is ramped up and
+// the motion damped (dynamic relaxation) to reach the static state, where the
+// contact pressure is read from the contact forces on the block's top row
+// and fitted with the Hertz ellipse.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "solver/physics/contact.hpp"
+#include "solver/scene/builders.hpp"
+#include "solver/scene/lattice.hpp"
+
+namespace gearsph::scenes {
+
+namespace {
+
+struct EllipseFit {
+  double p0 = 0.0, a = 0.0, rms = 0.0;
+};
+
+// Least-squares fit of p(x) = p0 sqrt(1 - (x - xc)^2 / a^2) over a scan of a:
+// for fixed a the best p0 is linear; xc = 0 by symmetry.
+EllipseFit fit_hertz(const std::vector<double>& x, const std::vector<double>& p, double a_guess) {
+  EllipseFit best;
+  double best_err = 1e300;
+  for (double a = 0.3 * a_guess; a <= 3.0 * a_guess; a += 0.001 * a_guess) {
+    double sgp = 0.0, sgg = 0.0;
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      const double g = std::abs(x[k]) < a ? std::sqrt(1.0 - x[k] * x[k] / (a * a)) : 0.0;
+      sgp += g * p[k];
+      sgg += g * g;
+    }
+    if (sgg <= 0.0) continue;
+    const double p0 = sgp / sgg;
+    double err = 0.0;
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      const double g = std::abs(x[k]) < a ? std::sqrt(1.0 - x[k] * x[k] / (a * a)) : 0.0;
+      err += (p[k] - p0 * g) * (p[k] - p0 * g);
+    }
+    if (err < best_err) {
+      best_err = err;
+      best = {p0, a, std::sqrt(err / static_cast<double>(x.size()))};
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+Scene build_hertz(const SceneInput& in) {
+  const nlohmann::json& s = in.scene;
+  const double R = s.at("radius_m").get<double>();
+  const double load = s.at("load_N_per_m").get<double>();
+  const Material mat_c = read_material(s.at("cylinder_material"));
+  const Material mat_b = read_material(s.at("block_material"));
+
+  const double e_star =
+      1.0 / ((1 - mat_c.nu * mat_c.nu) / mat_c.E + (1 - mat_b.nu * mat_b.nu) / mat_b.E);
+  const double a_ref = std::sqrt(4.0 * load * R / (std::numbers::pi * e_star));
+  const double p0_ref = 2.0 * load / (std::numbers::pi * a_ref);
+
+  Scene scene;
+  scene.type = "hertz";
+  Simulation& sim = scene.sim;
+  sim.discretization = in.discretization;
+  if (sim.discretization.dx <= 0) sim.discretization.dx = a_ref / 6.0;
+  const double dx = sim.discretization.dx;
+  if (a_ref < 3.0 * dx) {
+    throw JobError("/discretization", "the Hertz half-width a = " + std::to_string(a_ref) +
+                                          " m spans fewer than 3 spacings; use a spacing of at "
+                                          "most a/3 (several particles across a are needed)");
+  }
+  // Cap and block sizes in units of a: large against the contact zone.
+  const double cap_height = std::min(R, s.at("cap_height_over_a").get<double>() * a_ref);
+  const double block_half = s.at("block_half_width_over_a").get<double>() * a_ref;
+  const double block_depth = s.at("block_depth_over_a").get<double>() * a_ref;
+  const long fixed_rows =
+      static_cast<long>(std::ceil(kernel_support(sim.discretization.kernel) *
+                                  sim.discretization.h_over_dx));
+
+  sim.motions.push_back(Motion::fixed("block base"));
+  // Cylinder cap, centre (0, R), filled with concentric rings of particles
+  // so that its surface is the circle itself: on a square lattice the
+  // bottom row would be flat over |x| < sqrt(R dx), wider than the contact
+  // (a^2/2R is a fraction of dx), and the block would feel a flat punch.
+  // The lowest particle sits at y = dx/2, one spacing above the block's top
+  // row at -dx/2 (touching, zero force).
+  add_body(sim, "cylinder", mat_c);
+  for (double r = R - 0.5 * dx; r > R - cap_height && r > 0.5 * dx; r -= dx) {
+    const long count = std::lround(2.0 * std::numbers::pi * r / dx);
+    const double ring_volume = 2.0 * std::numbers::pi * r * dx / static_cast<double>(count);
+    for (long k = 0; k < count; ++k) {
+      // Start at the bottom point (0, R - r) so every ring has a particle on
+      // the axis of symmetry.
+      const double angle = -0.5 * std::numbers::pi + 2.0 * std::numbers::pi * k / count;
+      const double x = r * std::cos(angle), y = R + r * std::sin(angle);
+      if (y <= cap_height) add_particle(sim, x, y, 0, ring_volume);
+    }
+  }
+  end_body(sim);
+  add_body(sim, "block", mat_b);
+  const long bx = lattice::cells(2 * block_half, dx), by = lattice::cells(block_depth, dx);
+  lattice::fill_rectangle(-0.5 * bx * dx, -by * dx, bx, by, dx, [&](double x, double y) {
+    add_particle(sim, x, y, y < -(by - fixed_rows) * dx ? 1 : 0);
+  });
+  end_body(sim);
+
+  // Uniform traction P' on the cap's top row.
+  Particles& p = sim.particles;
+  const Body& cyl = sim.bodies[0];
+  double top = -1e300;
+  for (std::size_t i = cyl.begin; i < cyl.end; ++i) top = std::max(top, p.y[i]);
+  std::vector<std::size_t> top_row;
+  for (std::size_t i = cyl.begin; i < cyl.end; ++i) {
+    if (p.y[i] > top - 0.5 * dx) top_row.push_back(i);
+  }
+  for (std::size_t i : top_row) {
+    p.load_ay[i] = -load / static_cast<double>(top_row.size()) / p.mass[i];
+  }
+  sim.domain = grown_bounds(p, 2 * R);
+
+  // Dynamic relaxation: critical-ish damping of the slowest mode, a load
+  // ramp over a few of its periods, then hold.
+  const double height = cap_height + block_depth;
+  const double c = std::max(mat_c.p_wave_speed(), mat_b.p_wave_speed());
+  const double omega1 = std::numbers::pi * c / (2.0 * height);
+  sim.damping_1_s = omega1;
+  sim.load_ramp_s = 6.0 * 2.0 * std::numbers::pi / omega1;
+  scene.default_end_s = 2.0 * sim.load_ramp_s;
+
+  // The block's top row: where the pressure is read.
+  std::vector<std::size_t> surface;
+  const Body& blk = sim.bodies[1];
+  for (std::size_t i = blk.begin; i < blk.end; ++i) {
+    if (p.y[i] > -dx) surface.push_back(i);
+  }
+  scene.columns.push_back({"contact_load_fraction", [surface, load](const Simulation& s2) {
+                             double f = 0.0;
+                             for (std::size_t i : surface) {
+                               f += s2.particles.mass[i] * s2.particles.contact_ay[i];
+                             }
+                             return -f / load;  // the block is pushed down
+                           }});
+  scene.description = {{"reference_half_width_m", a_ref},
+                       {"reference_peak_pressure_Pa", p0_ref},
+                       {"contact_modulus_Pa", e_star},
+                       {"cap_height_m", cap_height},
+                       {"block_width_m", bx * dx},
+                       {"block_depth_m", by * dx},
+                       {"particles_across_half_width", a_ref / dx}};
+
+  scene.analyse = [=](const History&, const Simulation& s2) {
+    nlohmann::json a;
+    const Particles& q = s2.particles;
+    std::vector<double> xs, ps;
+    double total = 0.0;
+    for (std::size_t i : surface) {
+      const double f = -q.mass[i] * q.contact_ay[i];  // downward push on the block
+      xs.push_back(q.x[i]);
+      ps.push_back(f / dx);  // pressure over the particle's width
+      total += f;
+    }
+    const EllipseFit fit = fit_hertz(xs, ps, a_ref);
+    double peak = 0.0;
+    for (double v : ps) peak = std::max(peak, v);
+    a["reference"] = "Hertz line contact: a = sqrt(4 P' R / (pi E*)), p0 = 2 P' / (pi a)";
+    a["reference_half_width_m"] = a_ref;
+    a["reference_peak_pressure_Pa"] = p0_ref;
+    a["half_width_m"] = fit.a;
+    a["peak_pressure_Pa"] = fit.p0;
+    a["max_particle_pressure_Pa"] = peak;
+    a["half_width_error"] = (fit.a - a_ref) / a_ref;
+    a["peak_pressure_error"] = (fit.p0 - p0_ref) / p0_ref;
+    a["fit_rms_Pa"] = fit.rms;
+    a["transmitted_load_fraction"] = total / load;
+    nlohmann::json profile = nlohmann::json::array();
+    for (std::size_t k = 0; k < xs.size(); ++k) {
+      if (ps[k] > 0.0) profile.push_back({xs[k], ps[k]});
+    }
+    a["pressure_profile_x_m_p_Pa"] = profile;
+    return a;
+  };
+  return scene;
+}
+
+}  // namespace gearsph::scenes
