@@ -14,6 +14,8 @@ PACKAGES=(
   libsqlite3-dev sqlite3 libosmesa6-dev libpng-dev
   # tests and benchmarks
   libgtest-dev libbenchmark-dev python3-pysph curl
+  # results checked with ParaView's own reader (pvpython), rendering fonts
+  paraview python3-paraview python3-h5py libfreetype-dev fonts-dejavu-core
 )
 
 export DEBIAN_FRONTEND=noninteractive

@@ -6,6 +6,9 @@
 #include <string>
 
 #include "apps/gearsph/cli.hpp"
+#ifdef GEARSPH_WITH_RESULTS
+#include "results/register_outputs.hpp"
+#endif
 
 namespace {
 
@@ -19,6 +22,10 @@ usage:
       and writes DIR/validation.json (DIR defaults to ./validation)
   gearsph schema
       print the job schema (JSON Schema draft-07)
+  gearsph serve [--port 8080] [--bind 127.0.0.1] [--data DIR] [--workers N] [--threads-per-job M] [--token-file F] [--cors-origin ORIGIN] [--web DIR]
+      the job service: HTTP API, job store, worker pool (docs/api.md lists every option)
+  gearsph submit JOB.json --server URL [--wait] [--out DIR] [--token-file F]
+      submit a job to a server, follow its progress, download its results
   gearsph help
 
 exit status: 0 success, 1 error, 2 invalid job or usage, 3 run diverged, 4 cancelled
@@ -26,7 +33,17 @@ exit status: 0 success, 1 error, 2 invalid job or usage, 3 run diverged, 4 cance
 
 }  // namespace
 
+#ifdef GEARSPH_WITH_SERVICE
+namespace gearsph::cli {
+int cmd_serve(Args& args);
+int cmd_submit(Args& args);
+}  // namespace gearsph::cli
+#endif
+
 int main(int argc, char** argv) {
+#ifdef GEARSPH_WITH_RESULTS
+  gearsph::results::register_outputs();
+#endif
   if (argc < 2 || !std::strcmp(argv[1], "help") || !std::strcmp(argv[1], "--help") ||
       !std::strcmp(argv[1], "-h")) {
     std::fputs(kUsage, argc < 2 ? stderr : stdout);
@@ -38,6 +55,12 @@ int main(int argc, char** argv) {
     if (cmd == "run") return gearsph::cli::cmd_run(args);
     if (cmd == "validate") return gearsph::cli::cmd_validate(args);
     if (cmd == "schema") return gearsph::cli::cmd_schema(args);
+#ifdef GEARSPH_WITH_SERVICE
+    if (cmd == "serve") return gearsph::cli::cmd_serve(args);
+#endif
+#ifdef GEARSPH_WITH_SERVICE
+    if (cmd == "submit") return gearsph::cli::cmd_submit(args);
+#endif
     std::fprintf(stderr, "gearsph: unknown command '%s'\n\n%s", cmd.c_str(), kUsage);
     return 2;
   } catch (const std::invalid_argument& e) {

@@ -13,16 +13,30 @@ namespace gearsph::geometry {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+// Vertices closer than this (0.1 nm) are one vertex.
+constexpr double kSameVertex = 1e-10;
 
-double involute(double a) { return std::tan(a) - a; }
+double involute(double a) {
+  return std::tan(a) - a;
+}
 
 // Point at half angle psi from the +y axis (towards +x) on a circle.
 auto circle(double radius) {
   return [radius](double psi) { return Point{radius * std::sin(psi), radius * std::cos(psi)}; };
 }
 
+void drop_repeats(std::vector<Point>& points) {
+  std::vector<Point> kept;
+  for (const Point& p : points) {
+    if (kept.empty() || norm(p - kept.back()) >= kSameVertex) kept.push_back(p);
+  }
+  points.swap(kept);
+}
+
 // Half angle of a generating-frame point from the tooth axis (+y).
-double half_angle(Point p) { return std::atan2(p.x, p.y); }
+double half_angle(Point p) {
+  return std::atan2(p.x, p.y);
+}
 
 }  // namespace
 
@@ -38,18 +52,13 @@ PinionGeometry::PinionGeometry(const PinionSpec& spec) : spec_(spec) {
 
   const RackCutter cutter(tool, r_, x, spec_.backlash_m);
   undercut_ = cutter.ell_round() < 0.0;
-  double theta_end = cutter.theta_flank();
-  double ell_start = cutter.ell_round();
-  if (undercut_) {
-    theta_end = undercut_theta(cutter);
-    r_form_ = norm(cutter.fillet_point(theta_end));
-    ell_start = std::sqrt(r_form_ * r_form_ - rb_ * rb_);
-  } else {
-    // Generated root form circle (ISO 21771:2007, d_Ff for a rack-type tool).
-    r_form_ = std::hypot(rb_, ell_start);
-  }
+  // Not undercut: the flank starts where the round meets it, on the
+  // generated root form circle (ISO 21771:2007, d_Ff for a rack-type tool).
+  const FlankStart start =
+      undercut_ ? undercut_start(cutter) : FlankStart{cutter.theta_flank(), cutter.ell_round()};
+  r_form_ = std::hypot(rb_, start.ell);
   if (!(r_form_ < ra_)) throw std::invalid_argument("pinion: fillet reaches the tip circle");
-  build_half_tooth(cutter, ell_start, theta_end);
+  build_half_tooth(cutter, start);
 }
 
 void PinionGeometry::validate() const {
@@ -60,7 +69,8 @@ void PinionGeometry::validate() const {
   spec_.tool.validate(spec_.backlash_m);
   if (!(rf_ > 0.0)) fail("root circle radius is not positive (too few teeth for this shift)");
   if (!(s_ > 0.0)) fail("backlash allowance leaves no tooth at the pitch circle");
-  if (!(involute_half_angle(ra_) > 0.0)) fail("pointed tooth: the flanks meet below the tip circle");
+  if (!(involute_half_angle(ra_) > 0.0))
+    fail("pointed tooth: the flanks meet below the tip circle");
 }
 
 double PinionGeometry::involute_half_angle(double radius) const {
@@ -68,41 +78,49 @@ double PinionGeometry::involute_half_angle(double radius) const {
   return s_ / (2.0 * r_) + involute(spec_.tool.pressure_angle_rad) - involute(alpha_y);
 }
 
-// The fillet cuts the involute where its half angle drops below the
-// involute's at the same radius. At the round/flank junction the curve is on
-// the involute's second branch, which lies outside the tooth, so the first
-// sign change walking down the fillet is the undercut point. Below the base
-// circle the involute is continued by its radial cusp line, so that the gap
-// stays continuous when the undercut is slight and the crossing lies within a
-// hair of the cusp.
-double PinionGeometry::undercut_theta(const RackCutter& cutter) const {
+// Walks down the fillet from the round/flank junction, which (undercut) lies on
+// the involute's second branch outside the tooth, to the first point that is
+// no longer outside the involute:
+//  - the fillet crosses the involute above the base circle: the undercut
+//    point, where the involute now begins;
+//  - the fillet dips below the base circle first (only within a hair of the
+//    undercut limit): the involute keeps its foot, the fillet continues below
+//    the base circle, and the outline steps along the base circle to the cusp
+//    (a step of the order of the remaining branch length, far below 1 um).
+// Below the base circle the involute is continued by its radial cusp line so
+// that the gap is continuous for the bisection.
+PinionGeometry::FlankStart PinionGeometry::undercut_start(const RackCutter& cutter) const {
+  auto radius = [&](double theta) { return norm(cutter.fillet_point(theta)); };
   auto gap = [&](double theta) {
     const Point g = cutter.fillet_point(theta);
     return half_angle(g) - involute_half_angle(std::max(norm(g), rb_));
   };
+  auto bisect = [](double out, double in, auto&& is_out) {
+    for (int i = 0; i < 200 && std::abs(in - out) > 1e-15; ++i) {
+      const double mid = 0.5 * (out + in);
+      (is_out(mid) ? out : in) = mid;
+    }
+    return in;
+  };
   constexpr int kScan = 4096;
   const double t0 = cutter.theta_flank(), t1 = 1.5 * kPi;
-  double outside = t0, inside = t1;
+  double prev = t0;
   for (int i = 1; i <= kScan; ++i) {
     const double t = t0 + (t1 - t0) * i / kScan;
-    if (gap(t) <= 0.0) {
-      inside = t;
-      break;
+    const bool crossed = gap(t) <= 0.0;
+    if (!crossed && radius(t) >= rb_) {
+      prev = t;
+      continue;
     }
-    outside = t;
+    const double cut = crossed ? bisect(prev, t, [&](double u) { return gap(u) > 0.0; }) : t;
+    const double r_cut = radius(cut);
+    if (crossed && r_cut >= rb_) return {cut, std::sqrt(r_cut * r_cut - rb_ * rb_)};
+    return {bisect(prev, cut, [&](double u) { return radius(u) >= rb_; }), 0.0};
   }
-  for (int i = 0; i < 200 && std::abs(inside - outside) > 1e-15; ++i) {
-    const double mid = 0.5 * (outside + inside);
-    (gap(mid) > 0.0 ? outside : inside) = mid;
-  }
-  if (norm(cutter.fillet_point(inside)) < rb_) {
-    throw std::logic_error("pinion: undercut fillet misses the involute");
-  }
-  return inside;
+  throw std::logic_error("pinion: undercut fillet never meets the involute");
 }
 
-void PinionGeometry::build_half_tooth(const RackCutter& cutter, double ell_start,
-                                      double theta_end) {
+void PinionGeometry::build_half_tooth(const RackCutter& cutter, FlankStart start) {
   const double tol = spec_.chord_tolerance_m;
   half_.clear();
   const double psi_space = kPi / spec_.teeth, psi_root = cutter.root_half_angle();
@@ -111,14 +129,20 @@ void PinionGeometry::build_half_tooth(const RackCutter& cutter, double ell_start
   } else {
     half_.push_back(circle(rf_)(psi_space));
   }
-  sample_curve([&](double t) { return cutter.fillet_point(t); }, 1.5 * kPi, theta_end, tol, half_);
+  sample_curve([&](double t) { return cutter.fillet_point(t); }, 1.5 * kPi, start.theta, tol,
+               half_);
   const double ell_tip = std::sqrt(ra_ * ra_ - rb_ * rb_);
-  sample_curve([&](double l) { return cutter.flank_point(l); }, ell_start, ell_tip, tol, half_);
+  sample_curve([&](double l) { return cutter.flank_point(l); }, start.ell, ell_tip, tol, half_);
   const double psi_tip = involute_half_angle(ra_);
   sample_curve(circle(ra_), psi_tip, 0.0, tol, half_);
+  // Pieces meet to rounding (or, at the undercut limit, to a sub-nanometre
+  // step); drop vertices that repeat their predecessor.
+  drop_repeats(half_);
 }
 
-double PinionGeometry::angular_pitch() const { return 2.0 * kPi / spec_.teeth; }
+double PinionGeometry::angular_pitch() const {
+  return 2.0 * kPi / spec_.teeth;
+}
 
 double PinionGeometry::tooth_centre_angle(int k) const {
   return -kPi / 2.0 + angular_pitch() * k;
@@ -128,15 +152,21 @@ double PinionGeometry::cut_angle(int j) const {
   return -kPi / 2.0 + (2.0 * j - 1.0) * kPi / spec_.teeth;
 }
 
+int PinionGeometry::wrapped(int j) const {
+  return ((j % spec_.teeth) + spec_.teeth) % spec_.teeth;
+}
+
+// Index taken modulo z, so that the cut after tooth z - 1 is bit for bit the
+// cut before tooth 0 whichever sector asks for it.
 Point PinionGeometry::cut_point(int j, double radius) const {
-  const double a = cut_angle(j);
+  const double a = cut_angle(wrapped(j));
   return {radius * std::cos(a), radius * std::sin(a)};
 }
 
 // One angular pitch around tooth k, from the cut before it up to (excluding)
 // the cut after it: the half tooth, the tip on the axis, the mirrored half.
 void PinionGeometry::append_pitch(int k, Polygon& out) const {
-  const double turn = tooth_centre_angle(k) - kPi / 2.0;
+  const double turn = tooth_centre_angle(wrapped(k)) - kPi / 2.0;
   const std::size_t first = out.size();
   for (const Point& p : half_) out.push_back(rotate(p, turn));
   out.push_back(rotate({0.0, ra_}, turn));
@@ -168,8 +198,12 @@ Polygon PinionGeometry::sector_outline(int first, int last, double inner_radius)
     out.push_back({0.0, 0.0});
     return out;
   }
-  const auto arc = [&](double a) { return Point{inner_radius * std::cos(a), inner_radius * std::sin(a)}; };
+  const auto arc = [&](double a) {
+    return Point{inner_radius * std::cos(a), inner_radius * std::sin(a)};
+  };
+  const std::size_t arc_start = out.size();
   sample_curve(arc, cut_angle(last + 1), cut_angle(first), spec_.chord_tolerance_m, out);
+  out[arc_start] = cut_point(last + 1, inner_radius);
   out.push_back(cut_point(first, inner_radius));
   return out;
 }

@@ -22,9 +22,9 @@ class RackCutter;
 
 struct PinionSpec {
   int teeth = 12;
-  BasicRack tool;              // module, pressure angle, ISO 53 proportions
-  double profile_shift = 0.0;  // x
-  double backlash_m = 0.0;     // j_t, total circumferential thinning at the pitch circle
+  BasicRack tool;                   // module, pressure angle, ISO 53 proportions
+  double profile_shift = 0.0;       // x
+  double backlash_m = 0.0;          // j_t, total circumferential thinning at the pitch circle
   double chord_tolerance_m = 1e-7;  // largest distance from outline chords to the exact curves
 };
 
@@ -40,13 +40,16 @@ class PinionGeometry {
   double base_radius() const { return rb_; }
   double tip_radius() const { return ra_; }
   double root_radius() const { return rf_; }
-  // Where the involute begins: the root form circle, where the fillet meets
-  // the flank (or, when undercut, where the fillet cuts into the involute).
+  // Where the involute begins (root form circle): where the fillet meets the
+  // flank or, when undercut, where the fillet cuts into the involute; r_b when
+  // the fillet passes just below the involute's foot (a hair from the limit).
   double form_radius() const { return r_form_; }
-  // True when the cutter's straight flank reaches below the interference
-  // point, i.e. the fillet removes the foot of the involute. For the ISO 53
-  // tool this happens for x < h_fl* - z sin^2(alpha) / 2 with
-  // h_fl* = h_fP* - rho_fP* (1 - sin alpha) (about h_aP* = 1).
+  // The classical undercut criterion: the cutter's straight flank reaches
+  // below the interference point T, so the tip round cuts into the foot of the
+  // involute. With the ISO 53 tool: x < h_fl* - z sin^2(alpha) / 2, where
+  // h_fl* = h_fP* - rho_fP* (1 - sin alpha) = 0.99996, the textbook limit
+  // x_min = h_aP* - z sin^2(alpha) / 2 (Litvin & Fuentes 2004, undercutting
+  // of spur gears; DIN 3960).
   bool undercut() const { return undercut_; }
   double pitch_thickness() const { return s_; }
   // Half angle of the involute tooth at a radius r_b <= radius, from the tooth
@@ -67,16 +70,25 @@ class PinionGeometry {
   // Teeth first..last (counter-clockwise, any integers, fewer than z of them)
   // and the hub between inner_radius and the root circle, cut by radial lines
   // through the middles of the bounding spaces. inner_radius = 0 gives a pie
-  // slice. Neighbouring sectors share their radial edges vertex for vertex.
+  // slice; all z teeth with inner_radius = 0 give outline(). Neighbouring
+  // sectors share their radial edges vertex for vertex (tooth and cut indices
+  // are taken modulo z).
   Polygon sector_outline(int first, int last, double inner_radius) const;
   // Angle of the radial cut between teeth j - 1 and j: -pi/2 + (2 j - 1) pi / z.
   double cut_angle(int j) const;
 
  private:
   void validate() const;
-  double undercut_theta(const RackCutter& cutter) const;
-  void build_half_tooth(const RackCutter& cutter, double ell_start, double theta_end);
+  // Where the fillet hands over to the involute: fillet parameter theta and
+  // line-of-action coordinate ell of the involute's first point.
+  struct FlankStart {
+    double theta;
+    double ell;
+  };
+  FlankStart undercut_start(const RackCutter& cutter) const;
+  void build_half_tooth(const RackCutter& cutter, FlankStart start);
   void append_pitch(int k, Polygon& out) const;
+  int wrapped(int j) const;  // j modulo z in [0, z)
   Point cut_point(int j, double radius) const;
 
   PinionSpec spec_;

@@ -25,7 +25,8 @@ InsideTest::InsideTest(const Polygon& poly) : box_(bounding_box(poly)) {
   band_height_ = height > 0.0 ? height / static_cast<double>(bands) : 1.0;
   band_start_.assign(bands + 1, 0);
   for (const Edge& e : edges_) {
-    for (std::size_t b = band_of(e.lo.y), last = band_of(e.hi.y); b <= last; ++b) ++band_start_[b + 1];
+    for (std::size_t b = band_of(e.lo.y), last = band_of(e.hi.y); b <= last; ++b)
+      ++band_start_[b + 1];
   }
   for (std::size_t b = 0; b < bands; ++b) band_start_[b + 1] += band_start_[b];
   band_edges_.resize(band_start_[bands]);

@@ -22,8 +22,8 @@
 namespace gearsph::geometry {
 
 struct MeshPlacement {
-  Transform pinion;  // gear frame -> world
-  Transform rack;    // rack frame -> world
+  Transform pinion;              // gear frame -> world
+  Transform rack;                // rack frame -> world
   double centre_distance = 0.0;  // pinion centre to rack datum line, r + x m
   double rolling_line_y = 0.0;   // world y of the rack's rolling line
 };

@@ -6,7 +6,9 @@
 
 namespace gearsph::geometry {
 
-double norm(Point a) { return std::hypot(a.x, a.y); }
+double norm(Point a) {
+  return std::hypot(a.x, a.y);
+}
 
 Point rotate(Point a, double angle) {
   const double c = std::cos(angle), s = std::sin(angle);

@@ -27,11 +27,21 @@ struct Point {
   double y = 0.0;
 };
 
-inline Point operator+(Point a, Point b) { return {a.x + b.x, a.y + b.y}; }
-inline Point operator-(Point a, Point b) { return {a.x - b.x, a.y - b.y}; }
-inline Point operator*(double s, Point a) { return {s * a.x, s * a.y}; }
-inline double dot(Point a, Point b) { return a.x * b.x + a.y * b.y; }
-inline double cross(Point a, Point b) { return a.x * b.y - a.y * b.x; }
+inline Point operator+(Point a, Point b) {
+  return {a.x + b.x, a.y + b.y};
+}
+inline Point operator-(Point a, Point b) {
+  return {a.x - b.x, a.y - b.y};
+}
+inline Point operator*(double s, Point a) {
+  return {s * a.x, s * a.y};
+}
+inline double dot(Point a, Point b) {
+  return a.x * b.x + a.y * b.y;
+}
+inline double cross(Point a, Point b) {
+  return a.x * b.y - a.y * b.x;
+}
 double norm(Point a);
 // a rotated counter-clockwise by `angle` about the origin.
 Point rotate(Point a, double angle);
@@ -90,7 +100,7 @@ class InsideTest {
 
 // The first pair of non-adjacent edges (i, j) that touch or cross, or
 // adjacent edges that fold back onto each other; nullopt for a simple ring.
-// Expected O(n) with a uniform grid of edge buckets.
+// Sweep and prune on the edges' x-intervals: about O(n log n) for outlines.
 std::optional<std::pair<std::size_t, std::size_t>> find_self_intersection(const Polygon& poly);
 
 // Smallest distance between consecutive vertices (closing edge included);

@@ -9,7 +9,9 @@ namespace gearsph::geometry {
 
 namespace {
 
-double orient(Point a, Point b, Point c) { return cross(b - a, c - a); }
+double orient(Point a, Point b, Point c) {
+  return cross(b - a, c - a);
+}
 
 // c lies on segment ab, given that a, b, c are collinear.
 bool within(Point a, Point b, Point c) {
@@ -17,7 +19,9 @@ bool within(Point a, Point b, Point c) {
          c.y <= std::max(a.y, b.y);
 }
 
-bool opposite(double d1, double d2) { return (d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0); }
+bool opposite(double d1, double d2) {
+  return (d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0);
+}
 
 // Closed segments p1p2 and p3p4 share at least one point.
 bool segments_touch(Point p1, Point p2, Point p3, Point p4) {
@@ -52,7 +56,8 @@ std::optional<std::pair<std::size_t, std::size_t>> find_self_intersection(const 
   auto hi_x = [&](std::size_t i) { return std::max(poly[i].x, poly[(i + 1) % n].x); };
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lo_x(a) < lo_x(b); });
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return lo_x(a) < lo_x(b); });
   std::vector<std::size_t> active;
   for (const std::size_t i : order) {
     const double x0 = lo_x(i);
@@ -61,7 +66,8 @@ std::optional<std::pair<std::size_t, std::size_t>> find_self_intersection(const 
     for (const std::size_t j : active) {
       if (adjacent(i, j, n)) continue;
       const Point c = poly[j], d = poly[(j + 1) % n];
-      if (std::max(a.y, b.y) < std::min(c.y, d.y) || std::max(c.y, d.y) < std::min(a.y, b.y)) continue;
+      if (std::max(a.y, b.y) < std::min(c.y, d.y) || std::max(c.y, d.y) < std::min(a.y, b.y))
+        continue;
       if (segments_touch(a, b, c, d)) return std::pair{std::min(i, j), std::max(i, j)};
     }
     active.push_back(i);

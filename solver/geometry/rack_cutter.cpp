@@ -4,8 +4,7 @@
 
 namespace gearsph::geometry {
 
-RackCutter::RackCutter(const BasicRack& profile, double pitch_radius, double shift,
-                       double backlash)
+RackCutter::RackCutter(const BasicRack& profile, double pitch_radius, double shift, double backlash)
     : r_(pitch_radius),
       alpha_(profile.pressure_angle_rad),
       datum_(pitch_radius + shift * profile.module_m),
@@ -26,7 +25,9 @@ double RackCutter::flank_x(double y) const {
   return half_space_ - (y - datum_) * std::tan(alpha_);
 }
 
-double RackCutter::theta_flank() const { return std::numbers::pi + alpha_; }
+double RackCutter::theta_flank() const {
+  return std::numbers::pi + alpha_;
+}
 
 Point RackCutter::envelope(Point c, Point n) const {
   const double s = -c.x - (r_ - c.y) * n.x / n.y;

@@ -49,9 +49,9 @@ class RackCutter {
   Point envelope(Point c, Point n) const;
   double flank_x(double y) const;  // abscissa of the straight cutter flank at height y
 
-  double r_;       // pitch radius
-  double alpha_;   // pressure angle
-  double datum_;   // y of the cutter datum line, r + x m
+  double r_;            // pitch radius
+  double alpha_;        // pressure angle
+  double datum_;        // y of the cutter datum line, r + x m
   double half_space_;   // half the cutter space width at the datum line
   double rho_;          // tip round radius
   Point round_centre_;  // tip round centre at s = 0

@@ -30,6 +30,11 @@ void RackGeometry::validate() const {
   if (!(rho_tip >= 0.0)) fail("tip radius must not be negative");
   if (rho_tip * (1.0 - std::sin(a)) / std::cos(a) > tip_half) fail("tip radius does not fit");
   if (!(tip_half > 0.0)) fail("pointed tooth");
+  // The flank must keep a straight piece between the two rounds.
+  const double tip_round_foot = tip_y() - rho_tip * (1.0 - std::sin(a));
+  if (!(tip_round_foot > -spec_.profile.straight_flank_depth())) {
+    fail("tip and root rounds leave no straight flank");
+  }
 }
 
 double RackGeometry::flank_x(double y) const {
@@ -48,7 +53,9 @@ void RackGeometry::build_half_tooth() {
   const double yc = root_y() + rho;
   const Point root_centre{flank_x(yc) + rho / std::cos(a), yc};
   if (rho > 0.0) {
-    auto fillet = [&](double phi) { return root_centre + rho * Point{std::cos(phi), std::sin(phi)}; };
+    auto fillet = [&](double phi) {
+      return root_centre + rho * Point{std::cos(phi), std::sin(phi)};
+    };
     sample_curve(fillet, -std::numbers::pi / 2.0, a - std::numbers::pi, tol, half_);
   }
   half_.push_back(root_centre - rho * normal);
@@ -56,7 +63,9 @@ void RackGeometry::build_half_tooth() {
   const double yt = tip_y() - rho_tip;
   const Point tip_centre{flank_x(yt) - rho_tip / std::cos(a), yt};
   if (rho_tip > 0.0) {
-    auto round = [&](double phi) { return tip_centre + rho_tip * Point{std::cos(phi), std::sin(phi)}; };
+    auto round = [&](double phi) {
+      return tip_centre + rho_tip * Point{std::cos(phi), std::sin(phi)};
+    };
     sample_curve(round, a, std::numbers::pi / 2.0, tol, half_);
   }
   half_.push_back({tip_centre.x, tip_y()});
@@ -72,7 +81,8 @@ void RackGeometry::build_outline() {
   for (int j = n - 1; j >= 0; --j) {
     const double cx = tooth_centre_x(j);
     outline_.push_back({space_centre_x(j + 1), root_y()});
-    for (std::size_t i = 1; i < half_.size(); ++i) outline_.push_back({cx + half_[i].x, half_[i].y});
+    for (std::size_t i = 1; i < half_.size(); ++i)
+      outline_.push_back({cx + half_[i].x, half_[i].y});
     for (std::size_t i = half_.size() - 1; i >= 1; --i) {
       outline_.push_back({cx - half_[i].x, half_[i].y});
     }

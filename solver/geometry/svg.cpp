@@ -33,11 +33,20 @@ std::string escaped(const std::string& text) {
   std::string out;
   for (const char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -46,7 +55,7 @@ std::string escaped(const std::string& text) {
 // World (m, y up) to picture (px, y down).
 struct Frame {
   Box box;
-  double scale = 1.0;  // px per metre
+  double scale = 1.0;   // px per metre
   double margin = 0.0;  // px
   double width() const { return (box.hi.x - box.lo.x) * scale + 2.0 * margin; }
   double height() const {
@@ -63,7 +72,7 @@ Frame make_frame(const SvgDrawing& d) {
   Frame f;
   f.box = all.empty() ? Box{{0.0, 0.0}, {1e-3, 1e-3}} : bounding_box(all);
   f.scale = d.px_per_mm * kMmPerM;
-  f.margin = d.margin_mm * d.px_per_mm;
+  f.margin = d.margin_px;
   return f;
 }
 
@@ -80,9 +89,8 @@ double scale_bar_mm(const Frame& f) {
 
 void write_lines(std::ostream& os, const Frame& f, const SvgDrawing& d) {
   for (const auto& l : d.lines) {
-    os << (l.closed ? "<polygon" : "<polyline") << " fill=\"none\" stroke=\""
-       << escaped(l.colour) << "\" stroke-width=\"" << num(l.width_px)
-       << "\" stroke-linejoin=\"round\" points=\"";
+    os << (l.closed ? "<polygon" : "<polyline") << " fill=\"none\" stroke=\"" << escaped(l.colour)
+       << "\" stroke-width=\"" << num(l.width_px) << "\" stroke-linejoin=\"round\" points=\"";
     for (const Point& p : l.points) os << num(f.px(p.x)) << ',' << num(f.py(p.y)) << ' ';
     os << "\"/>\n";
   }
@@ -93,8 +101,8 @@ void write_dots(std::ostream& os, const Frame& f, const SvgDrawing& d) {
     const double r = s.radius_m > 0.0 ? s.radius_m * f.scale : 1.5;
     os << "<g fill=\"" << escaped(s.colour) << "\">\n";
     for (const Point& p : s.points) {
-      os << "<circle cx=\"" << num(f.px(p.x)) << "\" cy=\"" << num(f.py(p.y)) << "\" r=\""
-         << num(r) << "\"/>\n";
+      os << "<circle cx=\"" << num(f.px(p.x)) << "\" cy=\"" << num(f.py(p.y)) << "\" r=\"" << num(r)
+         << "\"/>\n";
     }
     os << "</g>\n";
   }
@@ -106,7 +114,8 @@ void write_scale_bar(std::ostream& os, const Frame& f) {
   const double x1 = x0 + mm / kMmPerM * f.scale;
   os << "<line x1=\"" << num(x0) << "\" y1=\"" << num(y) << "\" x2=\"" << num(x1) << "\" y2=\""
      << num(y) << "\" stroke=\"black\" stroke-width=\"3\"/>\n";
-  os << "<text x=\"" << num(x1 + 6.0) << "\" y=\"" << num(y + 5.0) << "\" font-family=\"sans-serif\" "
+  os << "<text x=\"" << num(x1 + 6.0) << "\" y=\"" << num(y + 5.0)
+     << "\" font-family=\"sans-serif\" "
      << "font-size=\"" << num(kFontPx) << "\">" << label(mm) << " mm</text>\n";
 }
 
@@ -120,7 +129,8 @@ std::string svg_document(const SvgDrawing& d) {
      << num(f.height()) << "\" viewBox=\"0 0 " << num(f.width()) << ' ' << num(f.height())
      << "\">\n"
      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-     << "<text x=\"" << num(f.margin) << "\" y=\"" << num(kFontPx) << "\" font-family=\"sans-serif\" "
+     << "<text x=\"" << num(f.margin) << "\" y=\"" << num(kFontPx)
+     << "\" font-family=\"sans-serif\" "
      << "font-size=\"" << num(kFontPx) << "\">" << escaped(d.title) << "</text>\n";
   write_dots(os, f, d);
   write_lines(os, f, d);

@@ -27,7 +27,7 @@ struct SvgDrawing {
   std::vector<SvgPolyline> lines;
   std::vector<SvgDots> dots;
   double px_per_mm = 20.0;
-  double margin_mm = 2.0;
+  double margin_px = 24.0;  // blank border around the drawing
 };
 
 std::string svg_document(const SvgDrawing& drawing);

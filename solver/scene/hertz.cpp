@@ -132,7 +132,7 @@ Scene build_hertz(const SceneInput& in) {
   const double c = std::max(mat_c.p_wave_speed(), mat_b.p_wave_speed());
   const double omega1 = std::numbers::pi * c / (2.0 * height);
   sim.damping_1_s = omega1;
-  sim.load_ramp_s = 6.0 * 2.0 * std::numbers::pi / omega1;
+  sim.load_ramp_s = 10.0 * 2.0 * std::numbers::pi / omega1;
   scene.default_end_s = 2.0 * sim.load_ramp_s;
 
   // The block's top row: where the pressure is read.

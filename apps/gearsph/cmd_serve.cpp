@@ -1,0 +1,108 @@
+// gearsph serve: the job service (HTTP API, job store, worker pool).
+#include <csignal>
+#include <cstdio>
+#include <stdexcept>
+#include <thread>
+
+#include "apps/gearsph/cli.hpp"
+#include "server/server.hpp"
+
+namespace gearsph::cli {
+
+namespace {
+
+std::chrono::milliseconds seconds_option(Args& args, const std::string& name,
+                                         std::chrono::milliseconds fallback) {
+  const auto v = args.option(name);
+  if (!v) return fallback;
+  try {
+    std::size_t used = 0;
+    const double s = std::stod(*v, &used);
+    if (used != v->size() || !(s > 0) || s > 86400) throw std::invalid_argument("");
+    return std::chrono::milliseconds(static_cast<long long>(s * 1000.0));
+  } catch (const std::exception&) {
+    throw std::invalid_argument("--" + name + " takes seconds (> 0), not '" + *v + "'");
+  }
+}
+
+double number_option(Args& args, const std::string& name, double fallback) {
+  const auto v = args.option(name);
+  if (!v) return fallback;
+  try {
+    std::size_t used = 0;
+    const double x = std::stod(*v, &used);
+    if (used != v->size() || !(x > 0)) throw std::invalid_argument("");
+    return x;
+  } catch (const std::exception&) {
+    throw std::invalid_argument("--" + name + " takes a positive number, not '" + *v + "'");
+  }
+}
+
+}  // namespace
+
+int cmd_serve(Args& args) {
+  server::ServerConfig c;
+  const int port = args.integer("port", c.port);
+  if (port < 0 || port > 65535) throw std::invalid_argument("--port is 0 to 65535");
+  c.port = static_cast<unsigned short>(port);
+  if (auto v = args.option("bind")) c.bind = *v;
+  if (auto v = args.option("data")) c.data_dir = *v;
+  c.workers = args.integer("workers", 0);
+  c.threads_per_job = args.integer("threads-per-job", 0);
+  if (c.workers < 0 || c.threads_per_job < 0) {
+    throw std::invalid_argument("--workers and --threads-per-job are positive");
+  }
+  if (auto v = args.option("token-file")) c.token = server::read_token_file(*v);
+  if (auto v = args.option("cors-origin")) c.cors_origin = *v;
+  if (auto v = args.option("web")) c.web_root = *v;
+  c.max_attempts = args.integer("max-attempts", c.max_attempts);
+  if (c.max_attempts < 1) throw std::invalid_argument("--max-attempts is 1 or more");
+
+  server::Limits& l = c.limits;
+  l.max_body_bytes = static_cast<std::uint64_t>(
+      number_option(args, "max-body-bytes", static_cast<double>(l.max_body_bytes)));
+  l.max_particles = static_cast<std::int64_t>(
+      number_option(args, "max-particles", static_cast<double>(l.max_particles)));
+  l.max_steps =
+      static_cast<std::int64_t>(number_option(args, "max-steps", static_cast<double>(l.max_steps)));
+  l.max_particle_steps = number_option(args, "max-particle-steps", l.max_particle_steps);
+  l.max_disk_bytes = static_cast<std::uint64_t>(
+      number_option(args, "max-disk-gb", static_cast<double>(l.max_disk_bytes) / 1e9) * 1e9);
+  l.max_study_jobs = static_cast<std::int64_t>(
+      number_option(args, "max-study-jobs", static_cast<double>(l.max_study_jobs)));
+  l.max_connections = args.integer("max-connections", l.max_connections);
+
+  server::Timeouts& t = c.timeouts;
+  t.header = seconds_option(args, "header-timeout", t.header);
+  t.body = seconds_option(args, "body-timeout", t.body);
+  t.idle = seconds_option(args, "idle-timeout", t.idle);
+  t.write = seconds_option(args, "write-timeout", t.write);
+  t.sse_keepalive = seconds_option(args, "keepalive", t.sse_keepalive);
+  if (!args.positional().empty()) throw std::invalid_argument("serve takes no file arguments");
+
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  server::resolve_defaults(c, cores);
+  if (c.workers * c.threads_per_job > cores) {
+    std::fprintf(stderr,
+                 "gearsph serve: warning: %d workers x %d threads = %d threads on %d cores; jobs "
+                 "will compete for the cores\n",
+                 c.workers, c.threads_per_job, c.workers * c.threads_per_job, cores);
+  }
+  // Without this, writing to a client that left would end the process.
+  std::signal(SIGPIPE, SIG_IGN);
+
+  // The renderer registers its image provider here once it exists:
+  //   c.image_provider = render::image_provider();
+  server::Server s(c);
+  std::printf(
+      "gearsph serve: listening on http://%s:%u (data %s, %d worker%s x %d thread%s%s%s%s)\n",
+      c.bind.c_str(), static_cast<unsigned>(s.port()), c.data_dir.string().c_str(), c.workers,
+      c.workers == 1 ? "" : "s", c.threads_per_job, c.threads_per_job == 1 ? "" : "s",
+      c.token.empty() ? "" : ", token required",
+      c.web_root.empty() ? "; no dashboard found" : "; dashboard ", c.web_root.string().c_str());
+  std::fflush(stdout);
+  s.run();
+  return 0;
+}
+
+}  // namespace gearsph::cli

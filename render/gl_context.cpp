@@ -1,0 +1,271 @@
+#include "render/gl_context.hpp"
+
+#include <GL/osmesa.h>
+// osmesa.h includes GL/gl.h (fixed-function GL 1.x entry points, exported by
+// libOSMesa itself; no loader needed).
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <mutex>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+#include "render/colormap.hpp"
+
+namespace gearsph::render {
+namespace {
+
+// The per-thread context and the colour buffer it renders into.
+//
+// Mesa 22.3's OSMesa keeps the old framebuffer textures alive when a context
+// is bound again at a different size (measured: RSS grows by width * height
+// * 4 bytes per size change, without bound). A size change therefore gets a
+// fresh context; same-size renders, the common case, reuse the context.
+// What remains is a few hundred bytes OSMesa never frees per destroyed
+// context (see tests/lsan.supp).
+class GlContext {
+ public:
+  GlContext() { create(); }
+  ~GlContext() { destroy(); }
+  GlContext(const GlContext&) = delete;
+  GlContext& operator=(const GlContext&) = delete;
+
+  void make_current(int width, int height) {
+    if (bound_ && (width != width_ || height != height_)) {
+      destroy();
+      create();
+    }
+    buffer_.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4, 0);
+    if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, width, height))
+      throw std::runtime_error("OSMesa: cannot bind a " + std::to_string(width) + "x" +
+                               std::to_string(height) + " buffer");
+    OSMesaPixelStore(OSMESA_Y_UP, 0);  // buffer row 0 = top row, as in PNG
+    bound_ = true;
+    width_ = width;
+    height_ = height;
+  }
+
+  const std::uint8_t* pixels() const { return buffer_.data(); }
+
+ private:
+  void create() {
+    // Creation touches Mesa's process-wide state (screen, LLVM set-up):
+    // serialise it. Rendering itself runs in parallel.
+    const std::lock_guard lock(creation_mutex());
+    const int attributes[] = {OSMESA_FORMAT,
+                              OSMESA_RGBA,
+                              OSMESA_DEPTH_BITS,
+                              0,
+                              OSMESA_STENCIL_BITS,
+                              0,
+                              OSMESA_ACCUM_BITS,
+                              0,
+                              OSMESA_PROFILE,
+                              OSMESA_COMPAT_PROFILE,
+                              0};
+    context_ = OSMesaCreateContextAttribs(attributes, nullptr);
+    if (context_ == nullptr) throw std::runtime_error("OSMesa: cannot create a GL context");
+    bound_ = false;
+  }
+  void destroy() {
+    const std::lock_guard lock(creation_mutex());
+    OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);  // release before destroying
+    OSMesaDestroyContext(context_);
+    context_ = nullptr;
+  }
+  static std::mutex& creation_mutex() {
+    static std::mutex m;
+    return m;
+  }
+
+  OSMesaContext context_ = nullptr;
+  bool bound_ = false;
+  int width_ = 0, height_ = 0;
+  std::vector<std::uint8_t> buffer_;
+};
+
+GlContext& thread_context() {
+  thread_local GlContext context;
+  return context;
+}
+
+thread_local bool canvas_active = false;
+
+// OSMesa's largest drawable (OSMESA_MAX_WIDTH/HEIGHT on llvmpipe).
+constexpr int kMaxBufferSide = 16384;
+
+// sRGB byte -> linear light in 16 bits, and back with correct rounding.
+// Identical samples average to exactly their own value, so flat areas keep
+// their exact colour; edges are blended in linear light (no dark fringes).
+const std::array<std::uint16_t, 256>& to_linear16() {
+  static const auto table = [] {
+    std::array<std::uint16_t, 256> t{};
+    for (int i = 0; i < 256; ++i)
+      t[static_cast<std::size_t>(i)] =
+          static_cast<std::uint16_t>(std::lround(65535.0 * srgb_to_linear(i / 255.0)));
+    return t;
+  }();
+  return table;
+}
+
+const std::vector<std::uint8_t>& to_srgb8() {
+  static const auto table = [] {
+    std::vector<std::uint8_t> t(65536);
+    for (std::size_t i = 0; i < t.size(); ++i)
+      t[i] = static_cast<std::uint8_t>(std::lround(255.0 * linear_to_srgb(i / 65535.0)));
+    return t;
+  }();
+  return table;
+}
+
+// Segments for a circle of radius r (in framebuffer pixels) so that the
+// polygon deviates from the circle by at most kSagitta pixels.
+int circle_segments(double r) {
+  constexpr double kSagitta = 0.2;
+  if (r <= kSagitta) return 8;
+  const double n = std::numbers::pi / std::acos(1.0 - kSagitta / r);
+  return std::clamp(static_cast<int>(std::ceil(n)), 8, 128);
+}
+
+constexpr std::size_t kBatchVertices = 3 * 16384;
+
+}  // namespace
+
+GlCanvas::GlCanvas(int width, int height, int supersample)
+    : width_(width), height_(height), supersample_(std::max(1, supersample)) {
+  if (width <= 0 || height <= 0) throw std::invalid_argument("GlCanvas: size must be positive");
+  if (canvas_active) throw std::logic_error("GlCanvas: one canvas per thread at a time");
+  // Large images get fewer samples rather than failing.
+  supersample_ = std::min(supersample_, kMaxBufferSide / std::max(width, height));
+  if (supersample_ < 1) throw std::invalid_argument("GlCanvas: image larger than 16384 px");
+  thread_context().make_current(width * supersample_, height * supersample_);
+  canvas_active = true;
+  glViewport(0, 0, width * supersample_, height * supersample_);
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  glOrtho(0.0, width, height, 0.0, -1.0, 1.0);  // image pixels, y down
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  for (GLenum cap : {GL_DEPTH_TEST, GL_BLEND, GL_CULL_FACE, GL_DITHER, GL_LIGHTING, GL_TEXTURE_2D})
+    glDisable(cap);
+  glShadeModel(GL_FLAT);
+  clear_clip();
+}
+
+void GlCanvas::clear(Rgb8 colour) {
+  flush();
+  glClearColor(colour.r / 255.0f, colour.g / 255.0f, colour.b / 255.0f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+}
+
+void GlCanvas::set_clip(const Rect& clip) {
+  flush();
+  const int s = supersample_;
+  const auto x0 = static_cast<int>(std::floor(clip.x0)), x1 = static_cast<int>(std::ceil(clip.x1));
+  const auto y0 = static_cast<int>(std::floor(clip.y0)), y1 = static_cast<int>(std::ceil(clip.y1));
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(x0 * s, (height_ - y1) * s, (x1 - x0) * s, (y1 - y0) * s);  // GL: y up
+}
+
+void GlCanvas::clear_clip() {
+  flush();
+  glDisable(GL_SCISSOR_TEST);
+}
+
+void GlCanvas::push(Point p, Rgb8 c) {
+  xy_.push_back(static_cast<float>(p.x));
+  xy_.push_back(static_cast<float>(p.y));
+  rgb_.insert(rgb_.end(), {c.r, c.g, c.b});
+}
+
+void GlCanvas::fill_triangle(Point a, Point b, Point c, Rgb8 colour) {
+  push(a, colour);
+  push(b, colour);
+  push(c, colour);
+  if (xy_.size() / 2 >= kBatchVertices) flush();
+}
+
+void GlCanvas::fill_rect(const Rect& r, Rgb8 colour) {
+  fill_triangle({r.x0, r.y0}, {r.x1, r.y0}, {r.x1, r.y1}, colour);
+  fill_triangle({r.x0, r.y0}, {r.x1, r.y1}, {r.x0, r.y1}, colour);
+}
+
+void GlCanvas::push_disc(Point centre, double radius_px, Rgb8 colour) {
+  const int n = circle_segments(radius_px * supersample_);
+  const double step = 2.0 * std::numbers::pi / n;
+  Point prev{centre.x + radius_px, centre.y};
+  for (int k = 1; k <= n; ++k) {
+    const Point next{centre.x + radius_px * std::cos(k * step),
+                     centre.y + radius_px * std::sin(k * step)};
+    fill_triangle(centre, prev, next, colour);
+    prev = next;
+  }
+}
+
+void GlCanvas::fill_discs(std::span<const Point> centres, double radius_px,
+                          std::span<const Rgb8> colours) {
+  if (centres.size() != colours.size())
+    throw std::invalid_argument("fill_discs: one colour per centre");
+  for (std::size_t i = 0; i < centres.size(); ++i) push_disc(centres[i], radius_px, colours[i]);
+}
+
+void GlCanvas::stroke(std::span<const Point> points, double width_px, Rgb8 colour, bool closed) {
+  const double half = 0.5 * width_px;
+  const std::size_t n = points.size();
+  const std::size_t segments = closed && n > 2 ? n : (n > 0 ? n - 1 : 0);
+  for (std::size_t i = 0; i < segments; ++i) {
+    const Point a = points[i], b = points[(i + 1) % n];
+    const double len = std::hypot(b.x - a.x, b.y - a.y);
+    if (len == 0.0) continue;
+    const double nx = -(b.y - a.y) / len * half, ny = (b.x - a.x) / len * half;
+    fill_triangle({a.x + nx, a.y + ny}, {b.x + nx, b.y + ny}, {b.x - nx, b.y - ny}, colour);
+    fill_triangle({a.x + nx, a.y + ny}, {b.x - nx, b.y - ny}, {a.x - nx, a.y - ny}, colour);
+  }
+  for (const Point& p : points) push_disc(p, half, colour);  // round joins and caps
+}
+
+void GlCanvas::flush() {
+  if (xy_.empty()) return;
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_COLOR_ARRAY);
+  glVertexPointer(2, GL_FLOAT, 0, xy_.data());
+  glColorPointer(3, GL_UNSIGNED_BYTE, 0, rgb_.data());
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(xy_.size() / 2));
+  glDisableClientState(GL_COLOR_ARRAY);
+  glDisableClientState(GL_VERTEX_ARRAY);
+  xy_.clear();
+  rgb_.clear();
+}
+
+RgbImage GlCanvas::resolve() {
+  flush();
+  glFinish();
+  const int s = supersample_;
+  const std::size_t stride = static_cast<std::size_t>(width_) * static_cast<std::size_t>(s) * 4;
+  const std::uint8_t* buffer = thread_context().pixels();
+  const auto& lin = to_linear16();
+  const auto& enc = to_srgb8();
+  const std::uint32_t count = static_cast<std::uint32_t>(s * s);
+  RgbImage image(width_, height_);
+  std::vector<std::uint32_t> sums(static_cast<std::size_t>(width_) * 3);
+  for (int y = 0; y < height_; ++y) {
+    std::fill(sums.begin(), sums.end(), 0u);
+    for (int sy = 0; sy < s; ++sy) {
+      const std::uint8_t* row = buffer + static_cast<std::size_t>(y * s + sy) * stride;
+      for (int x = 0; x < width_ * s; ++x)
+        for (int c = 0; c < 3; ++c)
+          sums[static_cast<std::size_t>(x / s * 3 + c)] += lin[row[x * 4 + c]];
+    }
+    for (std::size_t i = 0; i < sums.size(); ++i)
+      image.rgb[static_cast<std::size_t>(y) * sums.size() + i] = enc[(sums[i] + count / 2) / count];
+  }
+  return image;
+}
+
+GlCanvas::~GlCanvas() {
+  canvas_active = false;
+}
+
+}  // namespace gearsph::render

@@ -1,0 +1,69 @@
+#pragma once
+// Everything `gearsph serve` can be told, with the defaults a single
+// workstation wants: loopback only, no token, no CORS, one job at a time
+// using every core.
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "server/image_provider.hpp"
+
+namespace gearsph::server {
+
+// Refusals made before anything is stored or run.
+struct Limits {
+  std::uint64_t max_body_bytes = 1 << 20;     // request bodies (413 above)
+  std::uint32_t max_header_bytes = 16 << 10;  // request line + headers (431 above)
+  std::int64_t max_particles = 5'000'000;
+  std::int64_t max_steps = 100'000'000;
+  double max_particle_steps = 1e12;            // particles x steps: the work of a run
+  std::uint64_t max_disk_bytes = 50ull << 30;  // estimated results on disk
+  std::int64_t max_study_jobs = 100;           // jobs one POST /studies may create
+  int max_connections = 512;                   // open connections (503 above)
+};
+
+struct Timeouts {
+  std::chrono::milliseconds header{10'000};  // from a request's first byte to its last header
+  std::chrono::milliseconds body{30'000};    // reading the body
+  std::chrono::milliseconds idle{60'000};    // keep-alive: waiting for the next request
+  std::chrono::milliseconds write{60'000};   // a client that takes no bytes for this long
+  std::chrono::milliseconds sse_keepalive{15'000};  // comment lines on quiet event streams
+};
+
+struct ServerConfig {
+  std::string bind = "127.0.0.1";
+  unsigned short port = 8080;  // 0: any free port (printed at start-up)
+  std::filesystem::path data_dir = "data";
+  int workers = 0;                 // jobs run at the same time; 0: chosen by resolve_defaults
+  int threads_per_job = 0;         // OpenMP threads of each job; 0: chosen by resolve_defaults
+  std::string token;               // non-empty: every request needs "Authorization: Bearer <token>"
+  std::string cors_origin;         // non-empty: CORS for this origin ("*" for any)
+  std::filesystem::path web_root;  // the dashboard; empty: the compiled-in source path
+  int max_attempts = 3;            // runs interrupted by a crash this often are failed
+  int io_threads = 2;              // threads of the io_context (network only)
+  int handler_threads = 2;  // threads for slow handlers (job preparation, rendering, deletion)
+  std::chrono::milliseconds progress_interval{250};  // at most 4 progress events/s per job
+  std::chrono::milliseconds flush_interval{1000};    // progress batches to the store
+  std::chrono::milliseconds shutdown_grace{3000};    // for in-flight responses on SIGTERM
+  Limits limits;
+  Timeouts timeouts;
+  ImageProvider image_provider;  // empty: the images endpoint answers 501
+};
+
+// Fills workers / threads_per_job so that workers x threads <= cores: by
+// default one job at a time with every core (a single large run finishes
+// soonest); with only one of the two given, the other divides the cores.
+void resolve_defaults(ServerConfig& config, int cores);
+
+// The token in a file: its first line without surrounding white space.
+// Throws if the file cannot be read or holds no token.
+std::string read_token_file(const std::filesystem::path& file);
+
+// --web, else the source tree's web/ compiled in, else web/ next to the
+// executable's directory; empty if none exists.
+std::filesystem::path default_web_root();
+
+const char* version();
+
+}  // namespace gearsph::server

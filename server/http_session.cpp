@@ -1,0 +1,362 @@
+#include "server/http_session.hpp"
+
+#include <boost/asio/dispatch.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/asio/write.hpp>
+
+#include "server/problem.hpp"
+
+namespace gearsph::server {
+
+namespace beast = boost::beast;
+namespace net = boost::asio;
+using tcp = net::ip::tcp;
+
+namespace {
+
+// How long a closing connection still takes bytes the client sends.
+constexpr std::chrono::seconds kLinger{2};
+constexpr std::size_t kLingerBytes = 16 << 20;
+
+std::string format_event(const Event& e) {
+  return "id: " + std::to_string(e.id) + "\nevent: " + e.type + "\ndata: " + e.data + "\n\n";
+}
+
+}  // namespace
+
+HttpSession::HttpSession(tcp::socket&& socket, const Router& router, net::thread_pool& handler_pool)
+    : stream_(std::move(socket)),
+      router_(router),
+      services_(router.services()),
+      handler_pool_(handler_pool),
+      keepalive_(stream_.get_executor()) {
+  ++services_.connections;
+}
+
+HttpSession::~HttpSession() {
+  --services_.connections;
+}
+
+void HttpSession::run() {
+  net::dispatch(stream_.get_executor(), [self = shared_from_this()] {
+    if (self->services_.connections > self->services_.config.limits.max_connections) {
+      StringResponse res = problem::plain(http::status::service_unavailable,
+                                          "too many open connections; try again shortly", "");
+      res.set(http::field::retry_after, "1");
+      self->refuse(std::move(res));
+      return;
+    }
+    self->wait_for_request();
+  });
+}
+
+void HttpSession::wait_for_request() {
+  parser_.emplace();
+  parser_->header_limit(services_.config.limits.max_header_bytes);
+  parser_->body_limit(services_.config.limits.max_body_bytes);
+  if (buffer_.size() > 0) {  // the client already sent (part of) the next request
+    read_header();
+    return;
+  }
+  // Idle until the request's first byte; the header timeout starts then.
+  const auto& t = services_.config.timeouts;
+  stream_.expires_after(first_request_ ? t.header : t.idle);
+  stream_.async_read_some(buffer_.prepare(4096),
+                          [self = shared_from_this()](beast::error_code ec, std::size_t n) {
+                            if (ec) return self->close();
+                            self->buffer_.commit(n);
+                            self->read_header();
+                          });
+}
+
+void HttpSession::read_header() {
+  first_request_ = false;
+  stream_.expires_after(services_.config.timeouts.header);
+  http::async_read_header(
+      stream_, buffer_, *parser_,
+      [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_header(ec); });
+}
+
+void HttpSession::on_header(beast::error_code ec) {
+  if (ec == http::error::end_of_stream || ec == beast::error::timeout ||
+      ec == net::error::operation_aborted || ec == net::error::connection_reset ||
+      ec == net::error::eof) {
+    return close();
+  }
+  if (ec == http::error::body_limit) {  // a declared Content-Length over the limit
+    return refuse(problem::plain(
+        http::status::payload_too_large,
+        "the body exceeds " + std::to_string(services_.config.limits.max_body_bytes) + " bytes",
+        ""));
+  }
+  if (ec == http::error::header_limit) {
+    return refuse(problem::plain(http::status::request_header_fields_too_large,
+                                 "the request line and headers exceed " +
+                                     std::to_string(services_.config.limits.max_header_bytes) +
+                                     " bytes",
+                                 ""));
+  }
+  if (ec) {
+    return refuse(problem::plain(http::status::bad_request,
+                                 "the request is not valid HTTP/1.1: " + ec.message(), ""));
+  }
+  if (auto refusal = router_.screen(parser_->get().base())) return refuse(std::move(*refusal));
+  const std::string_view expect = parser_->get()[http::field::expect];
+  if (beast::iequals(expect, "100-continue") && !parser_->is_done()) {
+    // The client waits for this before it sends the body.
+    auto cont = std::make_shared<http::response<http::empty_body>>(http::status::continue_, 11);
+    stream_.expires_after(services_.config.timeouts.write);
+    http::async_write(stream_, *cont,
+                      [self = shared_from_this(), cont](beast::error_code wec, std::size_t) {
+                        if (wec) return self->close();
+                        self->read_body();
+                      });
+    return;
+  }
+  read_body();
+}
+
+void HttpSession::read_body() {
+  stream_.expires_after(services_.config.timeouts.body);
+  http::async_read(
+      stream_, buffer_, *parser_,
+      [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_body(ec); });
+}
+
+void HttpSession::on_body(beast::error_code ec) {
+  if (ec == http::error::body_limit) {
+    return refuse(problem::plain(
+        http::status::payload_too_large,
+        "the body exceeds " + std::to_string(services_.config.limits.max_body_bytes) + " bytes",
+        ""));
+  }
+  if (ec == beast::error::timeout) {
+    // The socket is closed already; nothing can be answered.
+    return close();
+  }
+  if (ec == http::error::end_of_stream || ec == net::error::eof ||
+      ec == net::error::connection_reset || ec == net::error::operation_aborted) {
+    return close();
+  }
+  if (ec) {
+    return refuse(problem::plain(http::status::bad_request,
+                                 "the request body is not valid HTTP/1.1: " + ec.message(), ""));
+  }
+  dispatch();
+}
+
+void HttpSession::dispatch() {
+  auto req = std::make_shared<Request>();
+  req->msg = parser_->release();
+  Router::Match match = router_.match(*req);
+  if (!match.slow()) {
+    send(req, router_.respond(*req, std::move(match)));
+    return;
+  }
+  // Handlers that may block run on the handler pool; the answer comes back
+  // to this connection's strand.
+  net::post(handler_pool_, [self = shared_from_this(), ex = stream_.get_executor(), req,
+                            m = std::move(match)]() mutable {
+    Response res = self->router_.respond(*req, std::move(m));
+    net::post(ex, [self, req, r = std::move(res)]() mutable { self->send(req, std::move(r)); });
+  });
+}
+
+void HttpSession::send(std::shared_ptr<Request> req, Response res) {
+  const bool keep_alive = req->msg.keep_alive() && !services_.stopping;
+  std::visit(
+      [&](auto& m) {
+        using M = std::decay_t<decltype(m)>;
+        if constexpr (std::is_same_v<M, EventStream>) {
+          start_events(std::move(m));
+        } else {
+          m.keep_alive(keep_alive);
+          const bool close = !keep_alive || m.need_eof();
+          write(std::make_shared<M>(std::move(m)), close);
+        }
+      },
+      res);
+}
+
+void HttpSession::refuse(Response res) {
+  std::visit(
+      [&](auto& m) {
+        using M = std::decay_t<decltype(m)>;
+        if constexpr (!std::is_same_v<M, EventStream>) {
+          m.keep_alive(false);
+          write(std::make_shared<M>(std::move(m)), true);
+        }
+      },
+      res);
+}
+
+template <class Body>
+void HttpSession::write(std::shared_ptr<http::response<Body>> msg, bool close) {
+  auto sr = std::make_shared<http::response_serializer<Body>>(*msg);
+  write_some(std::move(msg), std::move(sr), close);
+}
+
+// Piece by piece, so the write timeout is about a client that stops taking
+// bytes, not about how long a large file takes.
+template <class Body>
+void HttpSession::write_some(std::shared_ptr<http::response<Body>> msg,
+                             std::shared_ptr<http::response_serializer<Body>> sr, bool close) {
+  stream_.expires_after(services_.config.timeouts.write);
+  auto& serializer = *sr;
+  http::async_write_some(stream_, serializer,
+                         [self = shared_from_this(), msg = std::move(msg), sr = std::move(sr),
+                          close](beast::error_code ec, std::size_t) mutable {
+                           if (ec) return self->close();
+                           if (!sr->is_done())
+                             return self->write_some(std::move(msg), std::move(sr), close);
+                           self->after_write(close);
+                         });
+}
+
+void HttpSession::after_write(bool close) {
+  if (close) return linger();
+  wait_for_request();
+}
+
+void HttpSession::linger() {
+  beast::error_code ec;
+  stream_.socket().shutdown(tcp::socket::shutdown_send, ec);
+  if (ec) return close();
+  stream_.expires_after(kLinger);  // one deadline for the whole drain
+  drain();
+}
+
+void HttpSession::drain() {
+  stream_.async_read_some(net::buffer(sink_),
+                          [self = shared_from_this()](beast::error_code ec, std::size_t n) {
+                            self->drained_ += n;
+                            if (ec || self->drained_ > kLingerBytes) return self->close();
+                            self->drain();
+                          });
+}
+
+void HttpSession::close() {
+  if (closed_) return;
+  closed_ = true;
+  keepalive_.cancel();
+  subscription_.reset();
+  beast::error_code ec;
+  stream_.socket().shutdown(tcp::socket::shutdown_both, ec);
+  stream_.close();
+}
+
+// ---- Server-Sent Events ----------------------------------------------------
+
+void HttpSession::start_events(EventStream es) {
+  job_filter_ = es.job_id;
+  EventHub& hub = services_.hub;
+  // Subscribe before looking at the state, so nothing falls in between.
+  subscription_ =
+      hub.subscribe(job_filter_, [weak = weak_from_this(), ex = stream_.get_executor()] {
+        net::post(ex, [weak] {
+          if (auto self = weak.lock()) self->pump();
+        });
+      });
+  const std::uint64_t now = hub.last_id();
+  const bool resume = es.last_event_id && *es.last_event_id <= now;
+  last_id_ = resume ? *es.last_event_id : now;
+  pending_ = "retry: 3000\n\n";
+  // A job's stream starts with its status, unless the client resumes it.
+  if (!job_filter_.empty() && !resume) pending_ += snapshot_event();
+
+  auto head = std::make_shared<http::response<http::empty_body>>(std::move(es.head));
+  head->keep_alive(false);
+  head->chunked(true);
+  auto sr = std::make_shared<http::response_serializer<http::empty_body>>(*head);
+  stream_.expires_after(services_.config.timeouts.write);
+  http::async_write_header(
+      stream_, *sr, [self = shared_from_this(), head, sr](beast::error_code ec, std::size_t) {
+        if (ec) return self->close();
+        self->watch_for_close();
+        self->arm_keepalive();
+        self->pump();
+      });
+}
+
+std::string HttpSession::snapshot_event() {
+  const auto job = services_.store.job(job_filter_);
+  if (!job) return {};
+  final_snapshot_ = is_terminal_status(job->status);
+  Event e;
+  e.id = last_id_;
+  e.type = "status";
+  e.data = services_.status_of(*job).dump();
+  return format_event(e);
+}
+
+void HttpSession::pump() {
+  if (closed_ || writing_) return;
+  EventHub& hub = services_.hub;
+  std::string text = std::move(pending_);
+  pending_.clear();
+  bool last = false;
+  const EventHub::Batch batch = hub.after(last_id_, job_filter_, 256);
+  if (batch.gap) {
+    // Events were dropped before this stream got them.
+    if (job_filter_.empty()) {
+      text += "event: reset\ndata: {}\n\n";
+    } else {
+      text += snapshot_event();
+    }
+  }
+  last_id_ = batch.seen;
+  for (const Event& e : batch.events) {
+    text += format_event(e);
+    if (e.terminal && !job_filter_.empty()) {
+      last = true;  // a job's stream ends with its final status
+      break;
+    }
+  }
+  if (final_snapshot_) last = true;  // the job had finished already
+  if (hub.closed() && batch.events.empty()) last = true;
+  if (text.empty() && !last) return;
+  write_events(std::move(text), last);
+}
+
+void HttpSession::write_events(std::string text, bool last) {
+  writing_ = true;
+  chunk_.clear();
+  if (!text.empty()) {
+    char size[20];
+    std::snprintf(size, sizeof size, "%zx\r\n", text.size());
+    chunk_ = size + text + "\r\n";
+  }
+  if (last) chunk_ += "0\r\n\r\n";
+  stream_.expires_after(services_.config.timeouts.write);
+  net::async_write(stream_, net::buffer(chunk_),
+                   [self = shared_from_this(), last](beast::error_code ec, std::size_t) {
+                     self->writing_ = false;
+                     // Done: close (the watch_for_close read is still pending, so no linger).
+                     if (ec || last) return self->close();
+                     self->pump();
+                   });
+}
+
+void HttpSession::arm_keepalive() {
+  keepalive_.expires_after(services_.config.timeouts.sse_keepalive);
+  keepalive_.async_wait([weak = weak_from_this()](beast::error_code ec) {
+    auto self = weak.lock();
+    if (!self || ec || self->closed_) return;
+    if (!self->writing_) {
+      self->pending_ += ": keep-alive\n\n";
+      self->pump();
+    }
+    self->arm_keepalive();
+  });
+}
+
+void HttpSession::watch_for_close() {
+  // The client sends nothing on an event stream; a read that ends means it left.
+  stream_.socket().async_read_some(net::buffer(sink_),
+                                   [self = shared_from_this()](beast::error_code ec, std::size_t) {
+                                     if (ec) return self->close();
+                                     self->watch_for_close();
+                                   });
+}
+
+}  // namespace gearsph::server

@@ -1,0 +1,126 @@
+#include "server/job_limits.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace gearsph::server {
+
+namespace {
+
+// Bytes per particle and snapshot in results.h5: position, velocity (2 + 1
+// padding each), stress xx yy xy zz, von Mises, density as doubles and a
+// body id (architecture.md, "Results file").
+constexpr double kSnapshotBytesPerParticle = 14 * 8;
+// History rows are stored twice (history.csv, /histories in results.h5);
+// about 40 columns of ~25 characters or 8 bytes.
+constexpr double kHistoryBytesPerRow = 40 * (25 + 8);
+constexpr double kFixedBytes = 1 << 20;  // job.json, summary.json, the XDMF sidecar
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+void collect_lengths(const nlohmann::json& j, std::vector<double>& out) {
+  if (!j.is_object()) return;
+  for (const auto& [key, value] : j.items()) {
+    if (value.is_object()) {
+      collect_lengths(value, out);
+      continue;
+    }
+    if (!value.is_number() || key.find("_per_") != std::string::npos) continue;
+    const auto ends = [&](const std::string& s) {
+      return key.size() > s.size() && key.compare(key.size() - s.size(), s.size(), s) == 0;
+    };
+    const double v = value.get<double>();
+    if (ends("_mm")) {
+      out.push_back(v * 1e-3);
+    } else if (ends("_m")) {
+      out.push_back(v);
+    }
+  }
+}
+
+}  // namespace
+
+nlohmann::json JobEstimate::to_json() const {
+  return {{"particles", particles},
+          {"steps", steps},
+          {"frames", frames},
+          {"particle_steps", particle_steps},
+          {"disk_bytes", disk_bytes}};
+}
+
+JobEstimate estimate_job(const PreparedJob& job) {
+  JobEstimate e;
+  e.particles = static_cast<std::int64_t>(job.scene.sim.particles.n);
+  e.steps = job.steps;
+  e.frames = job.frames;
+  e.particle_steps = double(e.particles) * double(e.steps);
+  const double rows = double(job.steps / std::max<std::int64_t>(1, job.history_every) + 2);
+  e.disk_bytes = static_cast<std::uint64_t>(double(e.frames) * double(e.particles) *
+                                                kSnapshotBytesPerParticle +
+                                            rows * kHistoryBytesPerRow + kFixedBytes);
+  return e;
+}
+
+std::vector<JobIssue> over_limits(const JobEstimate& e, const Limits& limits) {
+  std::vector<JobIssue> issues;
+  if (e.particles > limits.max_particles) {
+    issues.push_back({"/discretization", "the job has " + std::to_string(e.particles) +
+                                             " particles; this server takes at most " +
+                                             std::to_string(limits.max_particles) +
+                                             ": use a coarser spacing"});
+  }
+  if (e.steps > limits.max_steps) {
+    issues.push_back({"/time/end_s", "the job needs " + std::to_string(e.steps) +
+                                         " time steps; this server takes at most " +
+                                         std::to_string(limits.max_steps) +
+                                         ": simulate less time or use a coarser spacing"});
+  }
+  if (e.particle_steps > limits.max_particle_steps) {
+    issues.push_back({"/time/end_s", "the job needs " + number(e.particle_steps) +
+                                         " particle-steps (particles x steps); this server takes "
+                                         "at most " +
+                                         number(limits.max_particle_steps)});
+  }
+  if (e.disk_bytes > limits.max_disk_bytes) {
+    issues.push_back({"/output/frames",
+                      "the results would take about " + number(double(e.disk_bytes) / 1e9) +
+                          " GB on disk; this server takes at most " +
+                          number(double(limits.max_disk_bytes) / 1e9) + " GB: write fewer frames"});
+  }
+  return issues;
+}
+
+double particles_lower_bound(const nlohmann::json& job) {
+  if (!job.contains("discretization") || !job.contains("scene")) return 0.0;
+  const auto& d = job["discretization"];
+  double dx = 0.0;
+  if (d.contains("spacing_m") && d["spacing_m"].is_number()) dx = d["spacing_m"].get<double>();
+  if (d.contains("spacing_mm") && d["spacing_mm"].is_number())
+    dx = 1e-3 * d["spacing_mm"].get<double>();
+  if (!(dx > 0.0)) return 0.0;
+  std::vector<double> lengths;
+  collect_lengths(job["scene"], lengths);
+  lengths.erase(std::remove_if(lengths.begin(), lengths.end(),
+                               [](double v) { return !(v > 0.0) || !std::isfinite(v); }),
+                lengths.end());
+  if (lengths.empty()) return 0.0;
+  const auto [lo, hi] = std::minmax_element(lengths.begin(), lengths.end());
+  // A body spans at least its smallest by its largest in-plane length, up
+  // to the factor 4 kept for lengths that are not body dimensions.
+  return (*lo / dx) * (*hi / dx) / 4.0;
+}
+
+nlohmann::json limits_json(const Limits& limits) {
+  return {{"particles", limits.max_particles},
+          {"steps", limits.max_steps},
+          {"particle_steps", limits.max_particle_steps},
+          {"disk_bytes", limits.max_disk_bytes}};
+}
+
+}  // namespace gearsph::server

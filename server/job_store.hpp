@@ -1,0 +1,139 @@
+#pragma once
+// The durable record of every job: what was submitted, where it stands,
+// what became of it. The interface is what the server and the workers need
+// and nothing more, so another engine (PostgreSQL) can take the place of
+// SQLite. Every state change is one atomic statement or transaction.
+//
+// Job life cycle (OGC API - Processes status codes):
+//   accepted --claim--> running --finish--> successful | failed
+//      |                  |  \--requeue (server stopping / crashed)--> accepted
+//      +--dismiss--+------+--dismiss--> dismissed   (successful/failed too)
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace gearsph::server {
+
+bool is_job_status(std::string_view s);
+bool is_terminal_status(std::string_view s);  // successful, failed, dismissed
+
+struct JobRecord {
+  std::string id;
+  std::string status;  // accepted | running | successful | failed | dismissed
+  std::string name;
+  std::string job_json;  // the job with every default filled in: what runs
+  std::string study_id;  // "" unless created by a study
+  std::int64_t study_index = 0;
+  std::string parameters_json = "{}";  // the study's axis values for this job
+  std::int64_t particles = 0;
+  std::int64_t steps = 0;  // planned
+  double end_s = 0.0;      // planned simulated time
+  std::int64_t step = 0;   // reached
+  double simulated_s = 0.0;
+  double wall_s = 0.0;
+  double eta_s = 0.0;
+  int progress = 0;  // percent, 0-100
+  int attempts = 0;  // times a worker started it
+  std::string message;
+  std::string created, started, finished, updated;  // ISO 8601 UTC; "" if not yet
+};
+
+struct NewJob {
+  std::string id, name, job_json;
+  std::string study_id;
+  std::int64_t study_index = 0;
+  std::string parameters_json = "{}";
+  std::int64_t particles = 0, steps = 0;
+  double end_s = 0.0;
+};
+
+struct NewStudy {
+  std::string id, name, spec_json;
+};
+
+struct StudyRecord {
+  std::string id, name, spec_json, created;
+};
+
+// A client's Idempotency-Key and the request it came with (canonical JSON).
+struct Idempotency {
+  std::string scope;  // "jobs" or "studies"
+  std::string key;
+  std::string request;
+};
+
+struct SubmitResult {
+  enum class Kind { created, existing, conflict };
+  Kind kind = Kind::created;
+  std::string id;  // of the new or existing job / study
+};
+
+struct JobQuery {
+  std::vector<std::string> statuses;  // empty: any
+  std::string study_id;               // non-empty: that study's jobs, in study order
+  std::int64_t limit = 50;
+  std::int64_t offset = 0;  // newest first, unless study_id is given
+};
+
+struct JobPage {
+  std::vector<JobRecord> jobs;
+  std::int64_t total = 0;  // matching the query, ignoring limit and offset
+};
+
+struct ProgressUpdate {
+  std::string id;
+  std::int64_t step = 0;
+  double simulated_s = 0.0, wall_s = 0.0, eta_s = 0.0;
+  int progress = 0;
+};
+
+struct Recovery {
+  std::vector<std::string> requeued;  // interrupted runs that will start again
+  std::vector<std::string> failed;    // interrupted max_attempts times
+};
+
+class JobStore {
+ public:
+  virtual ~JobStore() = default;
+
+  // Stores an accepted job; with an idempotency key already used, answers
+  // `existing` (same request) or `conflict` (another request).
+  virtual SubmitResult submit(const NewJob& job, const std::optional<Idempotency>& idem) = 0;
+  // A study and all its jobs, in one transaction.
+  virtual SubmitResult submit_study(const NewStudy& study, const std::vector<NewJob>& jobs,
+                                    const std::optional<Idempotency>& idem) = 0;
+
+  virtual std::optional<JobRecord> job(const std::string& id) = 0;
+  virtual JobPage jobs(const JobQuery& query) = 0;
+  virtual std::optional<StudyRecord> study(const std::string& id) = 0;
+  virtual std::map<std::string, std::int64_t> count_by_status() = 0;
+
+  // Oldest accepted job -> running, attempts + 1; nullopt if none is queued.
+  virtual std::optional<JobRecord> claim() = 0;
+  // Progress of running jobs, in one transaction. Returns the ids that are
+  // no longer running (dismissed meanwhile): their runs should stop.
+  virtual std::vector<std::string> save_progress(const std::vector<ProgressUpdate>& batch) = 0;
+  // running -> successful | failed; false if the job was not running.
+  virtual bool finish(const std::string& id, const std::string& status, const std::string& message,
+                      const ProgressUpdate& last) = 0;
+  // Records where a run dismissed while running stopped; false if the job is not dismissed.
+  virtual bool close_dismissed(const std::string& id, const std::string& message,
+                               const ProgressUpdate& last) = 0;
+  // running -> accepted without counting the attempt (the server is stopping).
+  virtual bool requeue(const std::string& id, const std::string& message) = 0;
+  // Any state -> dismissed. Returns the record before the change, or nullopt if unknown.
+  virtual std::optional<JobRecord> dismiss(const std::string& id) = 0;
+  // At start-up: jobs left running by a crash go back to the queue, or fail
+  // once they were started max_attempts times.
+  virtual Recovery recover(int max_attempts) = 0;
+};
+
+// SQLite in WAL mode at `file` (created with its schema, migrated if older).
+std::unique_ptr<JobStore> open_sqlite_job_store(const std::filesystem::path& file);
+
+}  // namespace gearsph::server

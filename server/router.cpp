@@ -1,0 +1,262 @@
+#include "server/router.hpp"
+
+#include <cstdio>
+
+#include "server/problem.hpp"
+#include "server/routes.hpp"
+#include "server/static_files.hpp"
+
+namespace gearsph::server {
+
+const std::vector<Route>& route_table() {
+  using http::verb;
+  constexpr bool slow = true;
+  static const std::vector<Route> table = {
+      // method        path                               handler                slow
+      {verb::get, "/", routes::landing},
+      {verb::get, "/conformance", routes::conformance},
+      {verb::get, "/health", routes::health},
+      {verb::get, "/schema", routes::schema},
+      {verb::get, "/processes", routes::processes},
+      {verb::get, "/processes/{process}", routes::process},
+      {verb::post, "/processes/{process}/execution", routes::execute, slow},
+      {verb::get, "/jobs", routes::list_jobs},
+      {verb::post, "/jobs", routes::execute, slow},
+      {verb::get, "/jobs/{id}", routes::job},
+      {verb::delete_, "/jobs/{id}", routes::dismiss_job, slow},
+      {verb::get, "/jobs/{id}/results", routes::results},
+      {verb::get, "/jobs/{id}/files", routes::files},
+      {verb::get, "/jobs/{id}/files/{name}", routes::file},
+      {verb::get, "/jobs/{id}/images/{image}", routes::image, slow},
+      {verb::get, "/jobs/{id}/events", routes::job_events},
+      {verb::get, "/events", routes::all_events},
+      {verb::post, "/studies", routes::create_study, slow},
+      {verb::get, "/studies/{id}", routes::study, slow},  // reads every job's summary
+  };
+  return table;
+}
+
+bool token_matches(std::string_view presented, std::string_view expected) {
+  // Every byte of the expected token is looked at whatever is presented,
+  // so the time taken says nothing about how much of it was right.
+  unsigned char diff = presented.size() == expected.size() ? 0 : 1;
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    const char p = i < presented.size() ? presented[i] : 0;
+    diff |= static_cast<unsigned char>(p ^ expected[i]);
+  }
+  return diff == 0;
+}
+
+namespace {
+
+bool segments_match(std::string_view pattern, const std::vector<std::string>& segments,
+                    std::map<std::string, std::string>& params) {
+  std::size_t i = 0;
+  std::size_t start = 1;  // after the leading '/'
+  while (start <= pattern.size()) {
+    if (pattern.size() == 1) break;  // "/": no segments
+    const auto slash = pattern.find('/', start);
+    const std::string_view part = pattern.substr(
+        start, slash == std::string_view::npos ? std::string_view::npos : slash - start);
+    if (i >= segments.size()) return false;
+    if (part.size() > 2 && part.front() == '{' && part.back() == '}') {
+      if (segments[i].empty()) return false;
+      params[std::string(part.substr(1, part.size() - 2))] = segments[i];
+    } else if (part != segments[i]) {
+      return false;
+    }
+    ++i;
+    if (slash == std::string_view::npos) break;
+    start = slash + 1;
+  }
+  return i == segments.size();
+}
+
+std::string allow_list(std::vector<http::verb> methods) {
+  std::string out;
+  bool get = false;
+  for (http::verb m : methods) {
+    if (!out.empty()) out += ", ";
+    out += std::string(http::to_string(m));
+    get = get || m == http::verb::get;
+  }
+  if (get) out += ", HEAD";
+  out += ", OPTIONS";
+  return out;
+}
+
+http::response_header<>& head_of(Response& res) {
+  return std::visit(
+      [](auto& m) -> http::response_header<>& {
+        if constexpr (std::is_same_v<std::decay_t<decltype(m)>, EventStream>) {
+          return m.head;
+        } else {
+          return m;
+        }
+      },
+      res);
+}
+
+std::string presented_token(const http::request_header<>& header) {
+  const std::string_view auth = header[http::field::authorization];
+  constexpr std::string_view scheme = "bearer ";
+  if (auth.size() > scheme.size()) {
+    bool ok = true;
+    for (std::size_t i = 0; i < scheme.size() && ok; ++i) {
+      ok = std::tolower(static_cast<unsigned char>(auth[i])) == scheme[i];
+    }
+    if (ok) return std::string(auth.substr(scheme.size()));
+  }
+  // RFC 6750 2.3: browsers' EventSource cannot set headers.
+  Request r;
+  if (parse_target(header.target(), r)) {
+    if (auto t = r.query_value("access_token")) return *t;
+  }
+  return {};
+}
+
+bool is_preflight(const http::request_header<>& h) {
+  return h.method() == http::verb::options && h.count(http::field::origin) &&
+         h.count(http::field::access_control_request_method);
+}
+
+}  // namespace
+
+Router::Router(Services& services) : services_(services), routes_(route_table()) {}
+
+std::optional<Response> Router::screen(const http::request_header<>& header) const {
+  const ServerConfig& config = services_.config;
+  Request req;
+  req.path = std::string(header.target().substr(0, header.target().find('?')));
+  if (!config.token.empty() && !is_preflight(header) &&
+      !token_matches(presented_token(header), config.token)) {
+    Response res = problem::plain(http::status::unauthorized,
+                                  "this server needs \"Authorization: Bearer <token>\"", req.path);
+    head_of(res).set(http::field::www_authenticate, "Bearer realm=\"gearsph\"");
+    req.msg.base() = header;
+    decorate(req, res);
+    return res;
+  }
+  return std::nullopt;
+}
+
+Router::Match Router::match(Request& req) const {
+  Match m;
+  if (!parse_target(req.msg.target(), req)) {
+    m.answer = problem::plain(http::status::bad_request,
+                              "the request target is not a valid absolute path", req.path);
+    return m;
+  }
+  for (const std::string& s : req.segments) {
+    if (s == "." || s == ".." || s.find('\0') != std::string::npos) {
+      m.answer = problem::plain(http::status::bad_request,
+                                "path segments '.' and '..' are not allowed", req.path);
+      return m;
+    }
+  }
+  const http::verb method =
+      req.msg.method() == http::verb::head ? http::verb::get : req.msg.method();
+  std::vector<http::verb> allowed;
+  for (const Route& r : routes_) {
+    std::map<std::string, std::string> params;
+    if (!segments_match(r.pattern, req.segments, params)) continue;
+    if (r.method == method) {
+      req.params = std::move(params);
+      m.route = &r;
+      return m;
+    }
+    allowed.push_back(r.method);
+  }
+  if (allowed.empty() && method == http::verb::get) {
+    if (auto res = serve_static(req, services_.config.web_root)) {
+      m.answer = std::move(*res);
+      return m;
+    }
+  }
+  if (allowed.empty()) {
+    m.answer = problem::plain(http::status::not_found, "no such resource", req.path);
+    return m;
+  }
+  if (method == http::verb::options) {
+    if (auto pre = cors_preflight(req)) {
+      m.answer = std::move(*pre);
+      return m;
+    }
+    StringResponse res{http::status::no_content, 11};
+    res.set(http::field::allow, allow_list(allowed));
+    m.answer = std::move(res);
+    return m;
+  }
+  StringResponse res =
+      problem::plain(http::status::method_not_allowed,
+                     std::string(req.msg.method_string()) + " is not allowed here", req.path);
+  res.set(http::field::allow, allow_list(allowed));
+  m.answer = std::move(res);
+  return m;
+}
+
+std::optional<Response> Router::cors_preflight(const Request& req) const {
+  if (!is_preflight(req.msg.base())) return std::nullopt;
+  StringResponse res{http::status::no_content, 11};
+  const std::string& allowed = services_.config.cors_origin;
+  const std::string origin = req.header(http::field::origin);
+  if (!allowed.empty() && (allowed == "*" || allowed == origin)) {
+    res.set(http::field::access_control_allow_methods, "GET, HEAD, POST, DELETE, OPTIONS");
+    res.set(http::field::access_control_allow_headers,
+            "Authorization, Content-Type, Idempotency-Key, Last-Event-ID, Range, Accept");
+    res.set(http::field::access_control_max_age, "600");
+  }
+  return res;
+}
+
+Response Router::respond(Request& req, Match match) const {
+  ++services_.requests;
+  Response res = [&]() -> Response {
+    if (!match.route) return std::move(*match.answer);
+    try {
+      return match.route->handler(services_, req);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "gearsph serve: %s %s: %s\n",
+                   std::string(req.msg.method_string()).c_str(), req.path.c_str(), e.what());
+      return problem::plain(http::status::internal_server_error,
+                            "the server failed to answer this request", req.path);
+    }
+  }();
+  decorate(req, res);
+  if (req.msg.method() == http::verb::head) {
+    // HEAD: the headers of GET, no body.
+    if (auto* es = std::get_if<EventStream>(&res)) {
+      StringResponse head{es->head.result(), 11};
+      for (const auto& field : es->head) head.set(field.name_string(), field.value());
+      res = std::move(head);
+    } else if (auto* f = std::get_if<FileResponse>(&res)) {
+      StringResponse head{f->result(), 11};
+      for (const auto& field : *f) head.set(field.name_string(), field.value());
+      head.content_length(f->body().size());
+      res = std::move(head);
+    } else if (auto* s = std::get_if<StringResponse>(&res)) {
+      const auto n = s->body().size();
+      s->body().clear();
+      s->content_length(n);
+    }
+  }
+  return res;
+}
+
+void Router::decorate(const Request& req, Response& res) const {
+  auto& h = head_of(res);
+  h.set(http::field::server, std::string("gearsph/") + version());
+  if (!h.count(http::field::cache_control)) h.set(http::field::cache_control, "no-store");
+  const std::string& allowed = services_.config.cors_origin;
+  if (!allowed.empty() && req.msg.count(http::field::origin)) {
+    const std::string origin = req.header(http::field::origin);
+    if (allowed == "*" || allowed == origin) {
+      h.set(http::field::access_control_allow_origin, allowed == "*" ? "*" : origin);
+      h.set(http::field::vary, "Origin");
+      h.set(http::field::access_control_expose_headers,
+            "Location, Content-Range, Content-Length, Accept-Ranges");
+    }
+  }
+}
+
+}  // namespace gearsph::server

@@ -1,0 +1,58 @@
+#pragma once
+// Maps requests to handlers with a plain table of (method, path pattern,
+// handler); applies what every request shares: the bearer token, CORS,
+// 404 / 405 answers, HEAD, caching headers, the dashboard's static files.
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "server/http_types.hpp"
+#include "server/services.hpp"
+
+namespace gearsph::server {
+
+using Handler = Response (*)(Services&, Request&);
+
+struct Route {
+  http::verb method;
+  std::string_view pattern;  // "/jobs/{id}/files/{name}": {x} matches one segment
+  Handler handler;
+  bool slow = false;  // may block (prepares jobs, renders, deletes files): runs off the I/O threads
+};
+
+class Router {
+ public:
+  explicit Router(Services& services);
+
+  // Decides from the header alone whether to refuse before the body is
+  // read: 401 without a valid token. (A declared body over the limit is
+  // refused by the session's parser: 413.)
+  std::optional<Response> screen(const http::request_header<>& header) const;
+
+  struct Match {
+    const Route* route = nullptr;    // the handler to run, or
+    std::optional<Response> answer;  // the answer without one (404, 405, OPTIONS, static)
+    bool slow() const { return route && route->slow; }
+  };
+  Match match(Request& req) const;
+
+  // Runs the match's handler (never throws: 500 problem) and finishes the
+  // response (CORS, HEAD, caching).
+  Response respond(Request& req, Match match) const;
+
+  Services& services() const { return services_; }
+
+ private:
+  std::optional<Response> cors_preflight(const Request& req) const;
+  void decorate(const Request& req, Response& res) const;
+
+  Services& services_;
+  const std::vector<Route>& routes_;
+};
+
+const std::vector<Route>& route_table();
+
+// Constant-time comparison of the presented token with the configured one.
+bool token_matches(std::string_view presented, std::string_view expected);
+
+}  // namespace gearsph::server

@@ -1,0 +1,188 @@
+// A job's files, and images rendered from its results on request.
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "server/problem.hpp"
+#include "server/routes.hpp"
+#include "server/static_files.hpp"
+
+namespace gearsph::server::routes {
+
+namespace {
+
+StringResponse no_such_job(const Request& req) {
+  problem::Problem p;
+  p.status = http::status::not_found;
+  p.type = problem::kNoSuchJob;
+  p.title = "No such job";
+  p.detail = "there is no job " + req.param("id");
+  p.instance = req.path;
+  return problem::make(p);
+}
+
+StringResponse bad_parameter(const Request& req, const std::string& detail) {
+  problem::Problem p;
+  p.status = http::status::bad_request;
+  p.type = problem::kInvalidParameter;
+  p.title = "Invalid parameter";
+  p.detail = detail;
+  p.instance = req.path;
+  return problem::make(p);
+}
+
+std::optional<JobRecord> find_job(Services& s, const Request& req) {
+  if (!is_id(req.param("id"))) return std::nullopt;
+  return s.store.job(req.param("id"));
+}
+
+bool is_field_name(std::string_view f) {
+  return !f.empty() && f.size() <= 64 && std::all_of(f.begin(), f.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+  });
+}
+
+std::optional<double> finite_number(std::string_view s) {
+  // std::from_chars for double is in GCC 11+ libstdc++.
+  double v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+std::string short_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+// Written beside its final name, then renamed: a reader never sees half an image.
+void write_atomically(const std::filesystem::path& file, const std::string& bytes) {
+  const auto tmp = file.parent_path() / ("." + file.filename().string() + "." + new_id() + ".tmp");
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << bytes;
+    if (!out) {
+      std::error_code ec;
+      std::filesystem::remove(tmp, ec);
+      throw std::runtime_error("cannot write " + tmp.string());
+    }
+  }
+  std::filesystem::rename(tmp, file);
+}
+
+}  // namespace
+
+Response files(Services& s, Request& req) {
+  const auto record = find_job(s, req);
+  if (!record) return no_such_job(req);
+  nlohmann::json list = nlohmann::json::array();
+  for (const FileEntry& f : list_files(s.job_dir(record->id))) {
+    list.push_back({{"name", f.name},
+                    {"bytes", f.bytes},
+                    {"type", content_type_for(f.name)},
+                    {"href", "/jobs/" + record->id + "/files/" + f.name}});
+  }
+  return json_response(http::status::ok, {{"jobID", record->id}, {"files", list}});
+}
+
+Response file(Services& s, Request& req) {
+  const auto record = find_job(s, req);
+  if (!record) return no_such_job(req);
+  const std::string& name = req.param("name");
+  // Only a name the directory listing shows: no "..", no "/", no links.
+  const auto path = find_listed_file(s.job_dir(record->id), name);
+  if (!path) {
+    return problem::plain(http::status::not_found,
+                          "job " + record->id + " has no file named \"" + name + "\"", req.path);
+  }
+  Response res = serve_file(req, *path, content_type_for(*path));
+  // Results do not change once written; a running job's files may.
+  if (auto* f = std::get_if<FileResponse>(&res); f && record->status == "successful") {
+    f->set(http::field::cache_control, "private, max-age=3600");
+  }
+  return res;
+}
+
+Response image(Services& s, Request& req) {
+  const auto record = find_job(s, req);
+  if (!record) return no_such_job(req);
+  const std::string& image = req.param("image");
+  const std::string suffix = ".png";
+  if (image.size() <= suffix.size() ||
+      image.compare(image.size() - suffix.size(), suffix.size(), suffix) != 0 ||
+      !is_field_name(image.substr(0, image.size() - suffix.size()))) {
+    return problem::plain(http::status::not_found,
+                          "images are named {field}.png, the field in letters, digits and _",
+                          req.path);
+  }
+  ImageRequest ir;
+  ir.field = image.substr(0, image.size() - suffix.size());
+  std::string cache = "image-" + ir.field;
+  if (auto f = req.query_value("frame")) {
+    std::int64_t frame = -1;
+    const auto [end, ec] = std::from_chars(f->data(), f->data() + f->size(), frame);
+    if (ec != std::errc() || end != f->data() + f->size() || frame < 0) {
+      return bad_parameter(req, "frame is a whole number, 0 or more");
+    }
+    ir.frame = frame;
+    cache += "-frame" + std::to_string(frame);
+  } else {
+    cache += "-last";
+  }
+  if (auto z = req.query_value("zoom")) {
+    std::array<double, 4> box{};
+    std::size_t start = 0;
+    int n = 0;
+    bool ok = true;
+    for (; n < 4 && ok; ++n) {
+      const auto comma = z->find(',', start);
+      if ((n < 3) != (comma != std::string::npos)) ok = false;
+      const auto v = finite_number(std::string_view(*z).substr(start, comma - start));
+      if (!v) ok = false;
+      if (ok) box[static_cast<std::size_t>(n)] = *v;
+      start = comma + 1;
+    }
+    if (!ok || !(box[0] < box[2]) || !(box[1] < box[3])) {
+      return bad_parameter(req, "zoom is x0,y0,x1,y1 in metres with x0 < x1 and y0 < y1");
+    }
+    ir.zoom_m = box;
+    cache += "-zoom" + short_number(box[0]) + "_" + short_number(box[1]) + "_" +
+             short_number(box[2]) + "_" + short_number(box[3]);
+  }
+  cache += suffix;
+
+  if (!s.config.image_provider) {
+    problem::Problem p;
+    p.status = http::status::not_implemented;
+    p.type = problem::kRenderingUnavailable;
+    p.title = "Rendering not available";
+    p.detail = "rendering not available in this build";
+    p.instance = req.path;
+    return problem::make(p);
+  }
+  if (record->status != "successful") {
+    problem::Problem p;
+    p.status = http::status::not_found;
+    p.type = problem::kResultNotReady;
+    p.title = "Result not ready";
+    p.detail =
+        "images are rendered from the results of a successful job; this one is " + record->status;
+    p.instance = req.path;
+    return problem::make(p);
+  }
+  const auto dir = s.job_dir(record->id);
+  if (auto cached = find_listed_file(dir, cache)) return serve_file(req, *cached, "image/png");
+  const ImageResult r = s.config.image_provider(dir, ir);
+  if (r.status != 200) {
+    const bool error_status = r.status >= 400 && r.status <= 599;
+    return problem::plain(
+        error_status ? static_cast<http::status>(r.status) : http::status::internal_server_error,
+        r.detail.empty() ? "the image could not be rendered" : r.detail, req.path);
+  }
+  write_atomically(dir / cache, r.png);
+  return text_response(http::status::ok, r.png, "image/png");
+}
+
+}  // namespace gearsph::server::routes

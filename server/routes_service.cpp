@@ -1,0 +1,132 @@
+// The service describing itself: landing page, conformance, health, the job
+// schema and the one process (OGC API - Processes).
+#include "server/problem.hpp"
+#include "server/routes.hpp"
+#include "server/static_files.hpp"
+#include "solver/job/job.hpp"
+
+namespace gearsph::server::routes {
+
+namespace {
+
+bool wants_html(const Request& req) {
+  const std::string accept = req.header(http::field::accept);
+  if (req.query_value("f") == std::optional<std::string>("json")) return false;
+  if (req.query_value("f") == std::optional<std::string>("html")) return true;
+  // A browser asks for text/html first; curl and programs send */* or JSON.
+  return accept.find("text/html") != std::string::npos;
+}
+
+nlohmann::json process_summary() {
+  return {{"id", kProcessId},
+          {"title", "GearSPH simulation"},
+          {"description",
+           "Runs one SPH simulation of elastic solids (2D plane strain) described by a job "
+           "document (see /schema) and stores summary.json, history.csv, results.h5 and "
+           "results.xmf."},
+          {"version", version()},
+          {"jobControlOptions", {"async-execute", "dismiss"}},
+          {"outputTransmission", {"reference"}},
+          {"links",
+           {link(std::string("/processes/") + kProcessId, "self", "application/json",
+                 "process description"),
+            link(std::string("/processes/") + kProcessId + "/execution",
+                 "http://www.opengis.net/def/rel/ogc/1.0/execute", "application/json",
+                 "execute (POST a job)")}}};
+}
+
+}  // namespace
+
+Response landing(Services& s, Request& req) {
+  if (wants_html(req)) {
+    if (auto page = serve_static(req, s.config.web_root)) return std::move(*page);
+  }
+  return json_response(
+      http::status::ok,
+      {{"title", "GearSPH job service"},
+       {"description",
+        "SPH simulation of rack-and-pinion gear meshing as a job service (OGC API - Processes)."},
+       {"version", version()},
+       {"links",
+        {link("/", "self", "application/json", "this document"),
+         link("/conformance", "http://www.opengis.net/def/rel/ogc/1.0/conformance",
+              "application/json", "conformance classes"),
+         link("/processes", "http://www.opengis.net/def/rel/ogc/1.0/processes", "application/json",
+              "processes"),
+         link("/jobs", "http://www.opengis.net/def/rel/ogc/1.0/job-list", "application/json",
+              "jobs"),
+         link("/schema", "describedby", "application/schema+json", "the job schema"),
+         link("/health", "status", "application/json", "health and queue"),
+         link("/events", "alternate", "text/event-stream", "events of all jobs")}}});
+}
+
+Response conformance(Services&, Request&) {
+  return json_response(http::status::ok,
+                       {{"conformsTo",
+                         {"http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/core",
+                          "http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/json",
+                          "http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/job-list",
+                          "http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/dismiss"}}});
+}
+
+Response health(Services& s, Request&) {
+  const double uptime =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - s.started).count();
+  return json_response(http::status::ok, {{"status", "ok"},
+                                          {"version", version()},
+                                          {"uptime_s", uptime},
+                                          {"queue", s.store.count_by_status()},
+                                          {"workers", s.config.workers},
+                                          {"threads_per_job", s.config.threads_per_job},
+                                          {"running_here", s.workers.running()},
+                                          {"connections", s.connections.load()},
+                                          {"event_streams", s.hub.subscribers()},
+                                          {"requests", s.requests.load()}});
+}
+
+Response schema(Services&, Request&) {
+  StringResponse res =
+      text_response(http::status::ok, job_schema().dump(2) + "\n", "application/schema+json");
+  res.set(http::field::cache_control, "no-cache");
+  return res;
+}
+
+Response processes(Services&, Request&) {
+  return json_response(http::status::ok,
+                       {{"processes", {process_summary()}},
+                        {"links", {link("/processes", "self", "application/json")}}});
+}
+
+Response process(Services&, Request& req) {
+  if (req.param("process") != kProcessId) {
+    problem::Problem p;
+    p.status = http::status::not_found;
+    p.type = problem::kNoSuchProcess;
+    p.title = "No such process";
+    p.detail = "the only process is " + std::string(kProcessId);
+    p.instance = req.path;
+    return problem::make(p);
+  }
+  nlohmann::json d = process_summary();
+  d["inputs"] = {
+      {"job",
+       {{"title", "Job"},
+        {"description",
+         "The job document; POST it as the body of /processes/gearsph-simulation/execution "
+         "(bare, or as {\"inputs\": {\"job\": ...}}) or of /jobs."},
+        {"minOccurs", 1},
+        {"maxOccurs", 1},
+        {"schema", job_schema()}}}};
+  d["outputs"] = {{"summary",
+                   {{"title", "Summary numbers"},
+                    {"schema", {{"type", "object"}, {"contentMediaType", "application/json"}}}}},
+                  {"history",
+                   {{"title", "Time histories"},
+                    {"schema", {{"type", "string"}, {"contentMediaType", "text/csv"}}}}},
+                  {"results",
+                   {{"title", "Particle snapshots (HDF5, with an XDMF sidecar for ParaView)"},
+                    {"schema", {{"type", "string"}, {"contentMediaType", "application/x-hdf5"}}}}}};
+  return json_response(http::status::ok, d);
+}
+
+}  // namespace gearsph::server::routes

@@ -1,0 +1,118 @@
+#include "server/server.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdio>
+#include <thread>
+
+#include <boost/asio/ip/address.hpp>
+
+namespace gearsph::server {
+
+namespace net = boost::asio;
+
+namespace {
+
+int lock_data_dir(const std::filesystem::path& dir) {
+  const auto file = dir / "gearsph.lock";
+  const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::runtime_error("cannot create " + file.string());
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    ::close(fd);
+    throw std::runtime_error("another gearsph serve is using " + dir.string() + " (it holds " +
+                             file.string() + ")");
+  }
+  return fd;
+}
+
+WorkerPoolOptions worker_options(const ServerConfig& c) {
+  WorkerPoolOptions o;
+  o.workers = c.workers;
+  o.threads_per_job = c.threads_per_job;
+  o.jobs_dir = c.data_dir / "jobs";
+  o.progress_interval = c.progress_interval;
+  o.flush_interval = c.flush_interval;
+  return o;
+}
+
+}  // namespace
+
+Server::Server(ServerConfig config)
+    : config_(std::move(config)),
+      handler_pool_(static_cast<std::size_t>(std::max(1, config_.handler_threads))),
+      signals_(ioc_, SIGINT, SIGTERM) {
+  std::filesystem::create_directories(config_.data_dir / "jobs");
+  lock_fd_ = lock_data_dir(config_.data_dir);
+  store_ = open_sqlite_job_store(config_.data_dir / "gearsph.db");
+  const Recovery r = store_->recover(config_.max_attempts);
+  for (const std::string& id : r.requeued) {
+    std::fprintf(stderr, "gearsph serve: job %s was interrupted; it is queued again\n", id.c_str());
+  }
+  for (const std::string& id : r.failed) {
+    std::fprintf(stderr, "gearsph serve: job %s was interrupted %d times; it failed\n", id.c_str(),
+                 config_.max_attempts);
+  }
+  workers_ = std::make_unique<WorkerPool>(*store_, hub_, worker_options(config_));
+  services_ = std::make_unique<Services>(config_, *store_, *workers_, hub_);
+  router_ = std::make_unique<Router>(*services_);
+  boost::system::error_code ec;
+  const auto address = net::ip::make_address(config_.bind, ec);
+  if (ec) throw std::runtime_error("--bind " + config_.bind + " is not an IP address");
+  try {
+    listener_ = std::make_shared<Listener>(ioc_, net::ip::tcp::endpoint(address, config_.port),
+                                           *router_, handler_pool_);
+  } catch (const boost::system::system_error& e) {
+    throw std::runtime_error("cannot listen on " + config_.bind + ":" +
+                             std::to_string(config_.port) + ": " + e.code().message());
+  }
+}
+
+Server::~Server() {
+  handler_pool_.join();
+  if (lock_fd_ >= 0) ::close(lock_fd_);
+}
+
+void Server::stop() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_requested_ = true;
+  }
+  stop_wake_.notify_all();
+}
+
+void Server::run() {
+  signals_.async_wait([this](boost::system::error_code ec, int signal) {
+    if (ec) return;
+    std::fprintf(stderr, "gearsph serve: %s: stopping\n", signal == SIGINT ? "SIGINT" : "SIGTERM");
+    stop();
+  });
+  workers_->start();
+  listener_->run();
+  std::vector<std::thread> io;
+  for (int i = 0; i < std::max(1, config_.io_threads); ++i) io.emplace_back([this] { ioc_.run(); });
+
+  {
+    std::unique_lock<std::mutex> lock(mutex_);
+    stop_wake_.wait(lock, [this] { return stop_requested_; });
+  }
+  services_->stopping = true;
+  listener_->stop();
+  // Running jobs stop at their next check and go back to the queue.
+  workers_->stop();
+  hub_.close();
+  const auto deadline = std::chrono::steady_clock::now() + config_.shutdown_grace;
+  while (services_->connections > 0 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  boost::system::error_code ignored;
+  signals_.cancel(ignored);
+  ioc_.stop();
+  for (std::thread& t : io) t.join();
+  handler_pool_.join();
+  std::fprintf(stderr, "gearsph serve: stopped\n");
+}
+
+}  // namespace gearsph::server

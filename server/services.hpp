@@ -1,0 +1,43 @@
+#pragma once
+// What request handlers work with: the configuration, the job store, the
+// workers (for live progress and cancellation) and the event hub. Owned by
+// the Server; handlers receive it by reference.
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "server/config.hpp"
+#include "server/documents.hpp"
+#include "server/event_hub.hpp"
+#include "server/job_store.hpp"
+#include "server/worker_pool.hpp"
+
+namespace gearsph::server {
+
+struct Services {
+  Services(const ServerConfig& c, JobStore& s, WorkerPool& w, EventHub& h)
+      : config(c), store(s), workers(w), hub(h), jobs_dir(c.data_dir / "jobs") {}
+
+  const ServerConfig& config;
+  JobStore& store;
+  WorkerPool& workers;
+  EventHub& hub;
+  std::filesystem::path jobs_dir;
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+  std::atomic<int> connections{0};
+  std::atomic<std::int64_t> requests{0};
+  std::atomic<bool> stopping{false};  // shutting down: no more keep-alive
+
+  std::filesystem::path job_dir(const std::string& id) const { return jobs_dir / id; }
+  nlohmann::json status_of(const JobRecord& job) const {
+    return status_document(job, workers.live(job.id));
+  }
+  // A status event for a change made by a handler (submitted, dismissed).
+  void publish_status(const JobRecord& job) const {
+    hub.publish(job.id, "status", status_of(job).dump(), is_terminal_status(job.status));
+  }
+};
+
+}  // namespace gearsph::server

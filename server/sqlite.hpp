@@ -1,0 +1,116 @@
+#pragma once
+// A thin RAII layer over the SQLite C API: connections, prepared statements,
+// transactions and a pool that hands each thread a connection of its own.
+#include <condition_variable>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+struct sqlite3;
+struct sqlite3_stmt;
+
+namespace gearsph::server::sqlite {
+
+class Error : public std::runtime_error {
+ public:
+  Error(int result_code, const std::string& what) : std::runtime_error(what), code(result_code) {}
+  int code;  // SQLite's primary or extended result code
+};
+
+class Statement {
+ public:
+  Statement(sqlite3* db, std::string_view sql);
+  ~Statement();
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+
+  // Parameters are numbered from 1, as in SQLite.
+  Statement& bind(int index, std::int64_t value);
+  Statement& bind(int index, int value) { return bind(index, static_cast<std::int64_t>(value)); }
+  Statement& bind(int index, double value);
+  Statement& bind(int index, std::string_view text);
+  Statement& bind_null(int index);
+
+  // Runs to the next row: true if a row is available, false when done.
+  bool step();
+  // Runs a statement that returns no rows.
+  void run();
+
+  // Columns are numbered from 0.
+  std::int64_t int64(int column) const;
+  double real(int column) const;
+  std::string text(int column) const;  // "" for NULL
+  bool is_null(int column) const;
+
+ private:
+  sqlite3* db_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+class Connection {
+ public:
+  // Opens (creating) the file in WAL mode with a busy timeout, foreign keys
+  // on and synchronous=FULL: a committed submission survives a power cut.
+  explicit Connection(const std::filesystem::path& file);
+  ~Connection();
+  Connection(const Connection&) = delete;
+  Connection& operator=(const Connection&) = delete;
+
+  void exec(const std::string& sql);
+  Statement prepare(std::string_view sql) { return Statement(db_, sql); }
+  std::int64_t changes() const;
+  sqlite3* handle() { return db_; }
+
+ private:
+  sqlite3* db_ = nullptr;
+};
+
+// BEGIN IMMEDIATE takes the write lock up front, so two writers never
+// deadlock upgrading read locks; rolls back unless committed.
+class Transaction {
+ public:
+  explicit Transaction(Connection& db);
+  ~Transaction();
+  Transaction(const Transaction&) = delete;
+  Transaction& operator=(const Transaction&) = delete;
+  void commit();
+
+ private:
+  Connection& db_;
+  bool done_ = false;
+};
+
+// Connections are opened on demand and reused; one thread holds a
+// connection at a time (SQLite's WAL lets readers run beside the writer).
+class Pool {
+ public:
+  explicit Pool(std::filesystem::path file) : file_(std::move(file)) {}
+
+  class Lease {
+   public:
+    Lease(Pool& pool, std::unique_ptr<Connection> c) : pool_(&pool), c_(std::move(c)) {}
+    Lease(Lease&&) = default;
+    Lease& operator=(Lease&&) = delete;
+    ~Lease();
+    Connection& operator*() { return *c_; }
+    Connection* operator->() { return c_.get(); }
+
+   private:
+    Pool* pool_;
+    std::unique_ptr<Connection> c_;
+  };
+
+  Lease acquire();
+
+ private:
+  std::filesystem::path file_;
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<Connection>> idle_;
+};
+
+}  // namespace gearsph::server::sqlite

@@ -1,0 +1,184 @@
+#include "server/submission.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "server/documents.hpp"
+#include "server/job_limits.hpp"
+#include "server/problem.hpp"
+#include "solver/job/job.hpp"
+
+namespace gearsph::server {
+
+namespace {
+
+// Jobs nest a few levels; anything far deeper is refused before parsing,
+// so no recursive walk over the document can exhaust the stack.
+constexpr int kMaxJsonDepth = 64;
+
+bool nested_too_deep(std::string_view text) {
+  int depth = 0;
+  bool in_string = false, escaped = false;
+  for (const char c : text) {
+    if (in_string) {
+      if (escaped) {
+        escaped = false;
+      } else if (c == '\\') {
+        escaped = true;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '{' || c == '[') {
+      if (++depth > kMaxJsonDepth) return true;
+    } else if (c == '}' || c == ']') {
+      --depth;
+    }
+  }
+  return false;
+}
+
+bool is_json_media_type(std::string_view type) {
+  const auto semi = type.find(';');
+  std::string t(type.substr(0, semi));
+  while (!t.empty() && t.back() == ' ') t.pop_back();
+  for (char& c : t) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return t == "application/json" || (t.size() > 5 && t.rfind("application/", 0) == 0 &&
+                                     t.compare(t.size() - 5, 5, "+json") == 0);
+}
+
+}  // namespace
+
+std::variant<nlohmann::json, StringResponse> read_json_body(const Request& req) {
+  const std::string type = req.header(http::field::content_type);
+  if (!is_json_media_type(type)) {
+    return problem::plain(http::status::unsupported_media_type,
+                          type.empty()
+                              ? "send the job as JSON with \"Content-Type: application/json\""
+                              : "the body is " + type +
+                                    "; send the job as JSON with \"Content-Type: "
+                                    "application/json\"",
+                          req.path);
+  }
+  const std::string& body = req.msg.body();
+  problem::Problem p;
+  p.status = http::status::bad_request;
+  p.type = problem::kMalformedJson;
+  p.title = "Malformed JSON";
+  p.instance = req.path;
+  if (nested_too_deep(body)) {
+    p.detail = "the body nests objects or arrays more than " + std::to_string(kMaxJsonDepth) +
+               " levels deep";
+    return problem::make(p);
+  }
+  try {
+    return nlohmann::json::parse(body);
+  } catch (const nlohmann::json::parse_error& e) {
+    std::string what = e.what();
+    const auto bracket = what.find("] ");
+    if (what.rfind("[json.exception", 0) == 0 && bracket != std::string::npos) {
+      what = what.substr(bracket + 2);
+    }
+    p.detail = "the body is not valid JSON: " + what;
+    return problem::make(p);
+  }
+}
+
+std::variant<std::optional<Idempotency>, StringResponse> idempotency_of(
+    const Request& req, const std::string& scope, const nlohmann::json& body) {
+  if (!req.msg.count("Idempotency-Key")) return std::optional<Idempotency>{};
+  const std::string key(req.msg["Idempotency-Key"]);
+  const bool ok = !key.empty() && key.size() <= 255 &&
+                  std::all_of(key.begin(), key.end(), [](char c) { return c > 0x20 && c < 0x7f; });
+  if (!ok) {
+    problem::Problem p;
+    p.status = http::status::bad_request;
+    p.type = problem::kInvalidParameter;
+    p.title = "Invalid Idempotency-Key";
+    p.detail = "an Idempotency-Key has 1 to 255 visible ASCII characters";
+    p.instance = req.path;
+    return problem::make(p);
+  }
+  // Canonical form: the same JSON with other white space or key order is the same request.
+  return std::optional<Idempotency>(Idempotency{scope, key, body.dump()});
+}
+
+std::variant<NewJob, Refusal> admit_job(const Services& services, const nlohmann::json& raw) {
+  const Limits& limits = services.config.limits;
+  try {
+    const nlohmann::json job = validate_job(raw);
+    const double lower = particles_lower_bound(job);
+    if (lower > double(limits.max_particles)) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf,
+                    "the job has at least %.3g particles; this server takes at most %lld: use a "
+                    "coarser spacing",
+                    lower, static_cast<long long>(limits.max_particles));
+      Refusal r{http::status::unprocessable_entity,
+                problem::kJobTooLarge,
+                "Job too large",
+                {{"/discretization", buf}}};
+      r.extra["estimate"] = {{"particles_at_least", lower}};
+      r.extra["limits"] = limits_json(limits);
+      return r;
+    }
+    // One thread: preparation measures the stable step, and the handler
+    // threads must not compete with the running jobs for every core.
+    const PreparedJob prepared = prepare_job(job, 1);
+    const JobEstimate estimate = estimate_job(prepared);
+    auto over = over_limits(estimate, limits);
+    if (!over.empty()) {
+      Refusal r{http::status::unprocessable_entity, problem::kJobTooLarge, "Job too large",
+                std::move(over)};
+      r.extra["estimate"] = estimate.to_json();
+      r.extra["limits"] = limits_json(limits);
+      return r;
+    }
+    NewJob out;
+    out.id = new_id();
+    out.name = prepared.job.at("name").get<std::string>();
+    out.job_json = prepared.job.dump();
+    out.particles = estimate.particles;
+    out.steps = estimate.steps;
+    out.end_s = prepared.end_s;
+    return out;
+  } catch (const InvalidJob& e) {
+    return Refusal{http::status::bad_request, problem::kInvalidJob, "Invalid job", e.issues};
+  }
+}
+
+StringResponse refusal_response(const Refusal& r, const Request& req, const std::string& prefix,
+                                const std::string& context) {
+  problem::Problem p;
+  p.status = r.status;
+  p.type = r.type;
+  p.title = r.title;
+  p.instance = req.path;
+  p.extra = r.extra;
+  std::vector<JobIssue> located = r.issues;
+  for (JobIssue& i : located) i.message = context + i.message;
+  p.detail = located.size() == 1 ? located[0].message
+                                 : std::to_string(located.size()) + " problems; see errors";
+  p.extra["errors"] = problem::errors(located, prefix);
+  return problem::make(p);
+}
+
+StringResponse created(bool is_new, const std::string& location, const nlohmann::json& body) {
+  StringResponse res = json_response(is_new ? http::status::created : http::status::ok, body);
+  res.set(http::field::location, location);
+  return res;
+}
+
+StringResponse idempotency_conflict(const Request& req, const std::string& location) {
+  problem::Problem p;
+  p.status = http::status::conflict;
+  p.type = problem::kIdempotencyConflict;
+  p.title = "Idempotency-Key already used";
+  p.detail = "this Idempotency-Key was used for another request (" + location +
+             "); use a new key for a new request";
+  p.instance = req.path;
+  return problem::make(p);
+}
+
+}  // namespace gearsph::server

@@ -1,0 +1,50 @@
+#pragma once
+// The steps every submission shares (POST /jobs, /processes/.../execution,
+// /studies): a JSON body, an optional Idempotency-Key, and admission of a
+// job: schema check, scene built to count particles and steps, limits.
+#include <optional>
+#include <string>
+#include <variant>
+
+#include <nlohmann/json.hpp>
+
+#include "server/http_types.hpp"
+#include "server/job_store.hpp"
+#include "server/services.hpp"
+
+namespace gearsph::server {
+
+// The body as JSON; 415 unless it is declared JSON, 400 if it does not
+// parse or nests deeper than any job needs.
+std::variant<nlohmann::json, StringResponse> read_json_body(const Request& req);
+
+// The Idempotency-Key header (1-255 visible ASCII characters) with the
+// request's canonical form; nullopt without the header, a 400 when malformed.
+std::variant<std::optional<Idempotency>, StringResponse> idempotency_of(const Request& req,
+                                                                        const std::string& scope,
+                                                                        const nlohmann::json& body);
+
+// Why a job is not taken: 400 invalid, 422 too large.
+struct Refusal {
+  http::status status = http::status::bad_request;
+  std::string type, title;
+  std::vector<JobIssue> issues;                     // pointers into the job
+  nlohmann::json extra = nlohmann::json::object();  // estimate and limits
+};
+
+// Validates and prepares `job` (off the I/O threads: this builds the scene)
+// and checks the size limits.
+std::variant<NewJob, Refusal> admit_job(const Services& services, const nlohmann::json& job);
+
+// The problem answer for a refusal. `prefix` locates the job in the request
+// body for the error pointers (e.g. "/inputs/job"); `context` starts each
+// error detail (e.g. "job 3: ").
+StringResponse refusal_response(const Refusal& r, const Request& req,
+                                const std::string& prefix = "", const std::string& context = "");
+
+// 201 Created (200 for a repeated idempotent request) with a Location.
+StringResponse created(bool is_new, const std::string& location, const nlohmann::json& body);
+// 409: the Idempotency-Key was used before with another request.
+StringResponse idempotency_conflict(const Request& req, const std::string& location);
+
+}  // namespace gearsph::server

@@ -1,0 +1,282 @@
+#include "server/worker_pool.hpp"
+
+#include <cstdio>
+
+#include "server/documents.hpp"
+#include "solver/job/job.hpp"
+#include "solver/run/execute.hpp"
+
+namespace gearsph::server {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::string fixed(double v, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+  return buf;
+}
+
+nlohmann::json progress_document(const std::string& id, const Progress& p) {
+  return {{"jobID", id},      {"status", "running"}, {"progress", percent(p.step, p.steps)},
+          {"step", p.step},   {"steps", p.steps},    {"simulated_s", p.time_s},
+          {"end_s", p.end_s}, {"wall_s", p.wall_s},  {"eta_s", p.eta_s}};
+}
+
+}  // namespace
+
+struct WorkerPool::RunningJob {
+  std::string id;
+  std::atomic<bool> dismissed{false};
+  std::mutex mutex;  // guards the fields below
+  Progress progress;
+  bool dirty = false;
+  Clock::time_point last_event{};
+};
+
+// Runs on the simulation thread: cheap, never blocks on I/O.
+class WorkerPool::Observer : public RunObserver {
+ public:
+  Observer(WorkerPool& pool, RunningJob& job) : pool_(pool), job_(job) {}
+
+  void on_progress(const Progress& p) override {
+    const auto now = Clock::now();
+    bool publish = false;
+    {
+      std::lock_guard<std::mutex> lock(job_.mutex);
+      job_.progress = p;
+      job_.dirty = true;
+      if (now - job_.last_event >= pool_.options_.progress_interval || p.step >= p.steps) {
+        job_.last_event = now;
+        publish = true;
+      }
+    }
+    if (publish) pool_.hub_.publish(job_.id, "progress", progress_document(job_.id, p).dump());
+  }
+
+  bool cancelled() override { return job_.dismissed.load() || pool_.stopping_.load(); }
+
+ private:
+  WorkerPool& pool_;
+  RunningJob& job_;
+};
+
+WorkerPool::WorkerPool(JobStore& store, EventHub& hub, WorkerPoolOptions options)
+    : store_(store), hub_(hub), options_(std::move(options)) {}
+
+WorkerPool::~WorkerPool() {
+  stop();
+}
+
+void WorkerPool::start() {
+  for (int i = 0; i < options_.workers; ++i) threads_.emplace_back([this] { work(); });
+  flusher_ = std::thread([this] { flusher(); });
+}
+
+void WorkerPool::notify() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++generation_;
+  }
+  wake_.notify_one();
+}
+
+void WorkerPool::stop() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  for (std::thread& t : threads_) {
+    if (t.joinable()) t.join();
+  }
+  {
+    std::lock_guard<std::mutex> lock(flush_mutex_);
+    flusher_stop_ = true;
+  }
+  flush_wake_.notify_all();
+  if (flusher_.joinable()) flusher_.join();
+}
+
+std::optional<Progress> WorkerPool::live(const std::string& id) const {
+  std::shared_ptr<RunningJob> job;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = running_.find(id);
+    if (it == running_.end()) return std::nullopt;
+    job = it->second;
+  }
+  std::lock_guard<std::mutex> lock(job->mutex);
+  return job->progress;
+}
+
+bool WorkerPool::cancel(const std::string& id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = running_.find(id);
+  if (it == running_.end()) return false;
+  it->second->dismissed = true;
+  return true;
+}
+
+int WorkerPool::running() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return static_cast<int>(running_.size());
+}
+
+void WorkerPool::work() {
+  while (!stopping_) {
+    std::uint64_t seen = 0;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      seen = generation_;
+    }
+    std::optional<JobRecord> job;
+    try {
+      job = store_.claim();
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "gearsph serve: claiming a job failed: %s\n", e.what());
+    }
+    if (job) {
+      if (stopping_) {
+        store_.requeue(job->id, "re-queued: the server was stopping when this job was claimed");
+        return;
+      }
+      try {
+        run(*job);
+      } catch (const std::exception& e) {
+        // The store failed while recording the outcome; the job stays
+        // running in the store and is re-queued at the next start.
+        std::fprintf(stderr, "gearsph serve: job %s: recording its outcome failed: %s\n",
+                     job->id.c_str(), e.what());
+      }
+      continue;
+    }
+    std::unique_lock<std::mutex> lock(mutex_);
+    wake_.wait_for(lock, options_.poll_interval,
+                   [&] { return stopping_.load() || generation_ != seen; });
+  }
+}
+
+void WorkerPool::run(const JobRecord& job) {
+  auto rj = std::make_shared<RunningJob>();
+  rj->id = job.id;
+  rj->progress.steps = job.steps;
+  rj->progress.end_s = job.end_s;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    running_[job.id] = rj;
+  }
+  // Out of the running set however this ends (even if the store fails).
+  struct Unregister {
+    WorkerPool& pool;
+    const std::string& id;
+    ~Unregister() {
+      std::lock_guard<std::mutex> lock(pool.mutex_);
+      pool.running_.erase(id);
+    }
+  } unregister{*this, job.id};
+  std::fprintf(stderr, "gearsph serve: job %s running (%s, attempt %d)\n", job.id.c_str(),
+               job.name.c_str(), job.attempts);
+  publish_status(job.id);
+
+  const std::filesystem::path dir = options_.jobs_dir / job.id;
+  std::string outcome = "failed";
+  std::string message;
+  ProgressUpdate last;
+  last.id = job.id;
+  std::int64_t steps = job.steps;
+  try {
+    // A fresh directory: nothing of an interrupted attempt is mistaken for a result.
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    PreparedJob prepared =
+        prepare_job(nlohmann::json::parse(job.job_json), options_.threads_per_job);
+    steps = prepared.steps;
+    Observer observer(*this, *rj);
+    ExecuteOptions eo;
+    eo.threads = options_.threads_per_job;
+    eo.observer = &observer;
+    const RunResult r = execute_prepared(prepared, dir, eo).run;
+    last.step = r.steps_done;
+    last.simulated_s = prepared.scene.sim.time;
+    last.wall_s = r.wall_s;
+    last.progress = percent(r.steps_done, prepared.steps);
+    if (r.status == "completed") {
+      outcome = "successful";
+      last.progress = 100;
+      message =
+          "completed " + std::to_string(r.steps_done) + " steps in " + fixed(r.wall_s, 2) + " s";
+    } else if (r.status == "cancelled") {
+      outcome = "cancelled";
+    } else {
+      message = "the run diverged: " + r.message;
+    }
+  } catch (const InvalidJob& e) {
+    message = std::string("the job cannot run: ") + e.what();
+  } catch (const std::exception& e) {
+    message = std::string("internal error: ") + e.what();
+  }
+
+  const std::string where = "step " + std::to_string(last.step) + " of " + std::to_string(steps);
+  if (outcome == "cancelled" && !rj->dismissed && stopping_) {
+    store_.requeue(job.id, "re-queued: the server was stopped while this job ran (at " + where +
+                               "); it starts again from the beginning when the server is back");
+  } else if (outcome == "cancelled") {
+    store_.close_dismissed(job.id, "dismissed while running; the run stopped at " + where, last);
+  } else if (!store_.finish(job.id, outcome, message, last)) {
+    // Dismissed while its last steps ran.
+    store_.close_dismissed(job.id,
+                           "dismissed while running; the run had just " +
+                               std::string(outcome == "successful" ? "completed" : "failed"),
+                           last);
+  }
+  const auto record = store_.job(job.id);
+  std::fprintf(stderr, "gearsph serve: job %s %s: %s\n", job.id.c_str(),
+               record ? record->status.c_str() : "?", record ? record->message.c_str() : "");
+  publish_status(job.id);
+}
+
+void WorkerPool::publish_status(const std::string& id) {
+  const auto record = store_.job(id);
+  if (!record) return;
+  hub_.publish(id, "status", status_document(*record, live(id)).dump(),
+               is_terminal_status(record->status));
+}
+
+void WorkerPool::flush() {
+  std::vector<ProgressUpdate> batch;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (auto& [id, job] : running_) {
+      std::lock_guard<std::mutex> job_lock(job->mutex);
+      if (!job->dirty) continue;
+      job->dirty = false;
+      const Progress& p = job->progress;
+      batch.push_back({id, p.step, p.time_s, p.wall_s, p.eta_s, percent(p.step, p.steps)});
+    }
+  }
+  if (batch.empty()) return;
+  try {
+    // Jobs no longer running in the store were dismissed (perhaps by
+    // another process sharing it): stop their runs.
+    for (const std::string& id : store_.save_progress(batch)) cancel(id);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "gearsph serve: storing progress failed: %s\n", e.what());
+  }
+}
+
+void WorkerPool::flusher() {
+  for (;;) {
+    bool stop = false;
+    {
+      std::unique_lock<std::mutex> lock(flush_mutex_);
+      flush_wake_.wait_for(lock, options_.flush_interval, [&] { return flusher_stop_; });
+      stop = flusher_stop_;
+    }
+    flush();
+    if (stop) return;
+  }
+}
+
+}  // namespace gearsph::server

@@ -1,0 +1,83 @@
+#pragma once
+// N workers, each running one job at a time with M OpenMP threads (N x M
+// should not exceed the cores). A worker claims the oldest queued job from
+// the store, runs it into data/jobs/{id}/ and records the outcome. Progress
+// goes to memory at once (status requests read it there), to the event hub
+// throttled, and to the store in batches by a flusher thread: nothing the
+// HTTP side does ever waits for a simulation or its disk writes.
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "server/event_hub.hpp"
+#include "server/job_store.hpp"
+#include "solver/run/runner.hpp"
+
+namespace gearsph::server {
+
+struct WorkerPoolOptions {
+  int workers = 1;
+  int threads_per_job = 1;
+  std::filesystem::path jobs_dir;  // each job runs in jobs_dir / id
+  std::chrono::milliseconds progress_interval{250};
+  std::chrono::milliseconds flush_interval{1000};
+  std::chrono::milliseconds poll_interval{2000};  // look for jobs queued by other processes
+};
+
+class WorkerPool {
+ public:
+  WorkerPool(JobStore& store, EventHub& hub, WorkerPoolOptions options);
+  ~WorkerPool();
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+
+  void start();
+  // A job was queued: wake an idle worker.
+  void notify();
+  // Graceful stop: running jobs are cancelled at their next check and put
+  // back in the queue (their message says so); returns once every worker
+  // has finished and the last progress is stored.
+  void stop();
+
+  // The newest progress of a job running here.
+  std::optional<Progress> live(const std::string& id) const;
+  // Stops a job running here at its next check (it was dismissed); false if not running here.
+  bool cancel(const std::string& id);
+  int running() const;
+  const WorkerPoolOptions& options() const { return options_; }
+
+ private:
+  struct RunningJob;
+  class Observer;
+
+  void work();
+  void run(const JobRecord& job);
+  void flush();
+  void flusher();
+  void publish_status(const std::string& id);
+
+  JobStore& store_;
+  EventHub& hub_;
+  WorkerPoolOptions options_;
+
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  std::uint64_t generation_ = 0;  // bumped by notify()
+  std::map<std::string, std::shared_ptr<RunningJob>> running_;
+  std::atomic<bool> stopping_{false};
+  std::vector<std::thread> threads_;
+  std::thread flusher_;
+  std::mutex flush_mutex_;
+  std::condition_variable flush_wake_;
+  bool flusher_stop_ = false;
+};
+
+}  // namespace gearsph::server

@@ -1,0 +1,316 @@
+// The server's parts on their own: job store, studies, ranges, targets,
+// event hub, token comparison.
+#include <atomic>
+#include <thread>
+
+#include "server/documents.hpp"
+#include "server/event_hub.hpp"
+#include "server/http_types.hpp"
+#include "server/job_store.hpp"
+#include "server/range_file.hpp"
+#include "server/router.hpp"
+#include "server/static_files.hpp"
+#include "server/study.hpp"
+#include "tests/test_server_support.hpp"
+
+namespace gearsph::server::testing {
+namespace {
+
+NewJob new_job(const std::string& name = "j") {
+  NewJob j;
+  j.id = new_id();
+  j.name = name;
+  j.job_json = "{}";
+  j.steps = 100;
+  return j;
+}
+
+TEST(ServerJobStore, ClaimIsAtomicAcrossThreads) {
+  TempDir dir;
+  auto store = open_sqlite_job_store(dir.path() / "jobs.db");
+  constexpr int kJobs = 60;
+  for (int i = 0; i < kJobs; ++i) store->submit(new_job(std::to_string(i)), std::nullopt);
+  std::mutex mutex;
+  std::vector<std::string> claimed;
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&] {
+      auto own =
+          open_sqlite_job_store(dir.path() / "jobs.db");  // another connection, as another process
+      while (auto job = own->claim()) {
+        std::lock_guard<std::mutex> lock(mutex);
+        claimed.push_back(job->id);
+      }
+    });
+  }
+  for (auto& t : threads) t.join();
+  EXPECT_EQ(claimed.size(), static_cast<std::size_t>(kJobs));
+  EXPECT_EQ(std::set<std::string>(claimed.begin(), claimed.end()).size(),
+            static_cast<std::size_t>(kJobs));
+  EXPECT_EQ(store->count_by_status().at("running"), kJobs);
+}
+
+TEST(ServerJobStore, OldestFirstAndTheLifeCycle) {
+  TempDir dir;
+  auto store = open_sqlite_job_store(dir.path() / "jobs.db");
+  const NewJob a = new_job("a"), b = new_job("b");
+  store->submit(a, std::nullopt);
+  store->submit(b, std::nullopt);
+  auto first = store->claim();
+  ASSERT_TRUE(first);
+  EXPECT_EQ(first->id, a.id);
+  EXPECT_EQ(first->status, "running");
+  EXPECT_EQ(first->attempts, 1);
+  EXPECT_FALSE(first->started.empty());
+
+  ProgressUpdate p{a.id, 50, 0.1, 2.0, 2.0, 50};
+  EXPECT_TRUE(store->save_progress({p}).empty());
+  EXPECT_EQ(store->job(a.id)->step, 50);
+  // A dismissed job is reported back by the next progress batch.
+  store->dismiss(a.id);
+  EXPECT_EQ(store->save_progress({p}), std::vector<std::string>{a.id});
+  EXPECT_FALSE(store->finish(a.id, "successful", "done", p));
+  EXPECT_TRUE(store->close_dismissed(a.id, "stopped at step 50", p));
+  EXPECT_EQ(store->job(a.id)->status, "dismissed");
+
+  auto second = store->claim();
+  ASSERT_TRUE(second);
+  EXPECT_TRUE(store->finish(second->id, "successful", "done", {second->id, 100, 1, 1, 0, 100}));
+  EXPECT_FALSE(store->claim());
+  const auto rec = store->job(b.id);
+  EXPECT_EQ(rec->status, "successful");
+  EXPECT_EQ(rec->progress, 100);
+  EXPECT_FALSE(rec->finished.empty());
+  const auto before = store->dismiss(b.id);
+  EXPECT_EQ(before->status, "successful");
+  EXPECT_NE(store->job(b.id)->message.find("files were deleted"), std::string::npos);
+  EXPECT_FALSE(store->dismiss(new_id()));
+}
+
+TEST(ServerJobStore, RecoverRequeuesThenFailsAfterMaxAttempts) {
+  TempDir dir;
+  const auto file = dir.path() / "jobs.db";
+  const NewJob j = new_job();
+  {
+    auto store = open_sqlite_job_store(file);
+    store->submit(j, std::nullopt);
+    store->claim();
+  }
+  {
+    auto store = open_sqlite_job_store(file);  // after a crash
+    const Recovery r = store->recover(2);
+    EXPECT_EQ(r.requeued, std::vector<std::string>{j.id});
+    EXPECT_TRUE(r.failed.empty());
+    const auto rec = store->job(j.id);
+    EXPECT_EQ(rec->status, "accepted");
+    EXPECT_NE(rec->message.find("re-queued"), std::string::npos);
+    EXPECT_EQ(store->claim()->attempts, 2);
+  }
+  {
+    auto store = open_sqlite_job_store(file);
+    const Recovery r = store->recover(2);
+    EXPECT_EQ(r.failed, std::vector<std::string>{j.id});
+    EXPECT_EQ(store->job(j.id)->status, "failed");
+    EXPECT_NE(store->job(j.id)->message.find("interrupted 2 times"), std::string::npos);
+  }
+  Database db(file);
+  EXPECT_EQ(db.query("SELECT version FROM schema_version").at(0).at(0), "1");
+  EXPECT_EQ(db.query("PRAGMA journal_mode").at(0).at(0), "wal");
+}
+
+TEST(ServerJobStore, GracefulRequeueDoesNotCountTheAttempt) {
+  TempDir dir;
+  auto store = open_sqlite_job_store(dir.path() / "jobs.db");
+  const NewJob j = new_job();
+  store->submit(j, std::nullopt);
+  store->claim();
+  EXPECT_TRUE(store->requeue(j.id, "re-queued: stopping"));
+  EXPECT_EQ(store->job(j.id)->attempts, 0);
+  EXPECT_EQ(store->job(j.id)->status, "accepted");
+  EXPECT_FALSE(store->requeue(j.id, "again"));  // only a running job
+}
+
+TEST(ServerJobStore, IdempotencyKeys) {
+  TempDir dir;
+  auto store = open_sqlite_job_store(dir.path() / "jobs.db");
+  const Idempotency k{"jobs", "key", "{\"a\":1}"};
+  const NewJob a = new_job(), b = new_job();
+  EXPECT_EQ(store->submit(a, k).kind, SubmitResult::Kind::created);
+  const SubmitResult same = store->submit(b, k);
+  EXPECT_EQ(same.kind, SubmitResult::Kind::existing);
+  EXPECT_EQ(same.id, a.id);
+  EXPECT_FALSE(store->job(b.id));  // nothing new stored
+  EXPECT_EQ(store->submit(b, Idempotency{"jobs", "key", "{\"a\":2}"}).kind,
+            SubmitResult::Kind::conflict);
+  EXPECT_EQ(store->submit(b, Idempotency{"studies", "key", "{\"a\":2}"}).kind,
+            SubmitResult::Kind::created);  // keys are per endpoint
+}
+
+TEST(ServerJobStore, PagesAndFilters) {
+  TempDir dir;
+  auto store = open_sqlite_job_store(dir.path() / "jobs.db");
+  std::vector<std::string> ids;
+  for (int i = 0; i < 7; ++i) {
+    const NewJob j = new_job();
+    ids.push_back(j.id);
+    store->submit(j, std::nullopt);
+  }
+  store->claim();
+  JobQuery q;
+  q.limit = 3;
+  JobPage p = store->jobs(q);
+  EXPECT_EQ(p.total, 7);
+  ASSERT_EQ(p.jobs.size(), 3u);
+  EXPECT_EQ(p.jobs[0].id, ids[6]);  // newest first
+  q.offset = 6;
+  EXPECT_EQ(store->jobs(q).jobs.size(), 1u);
+  q = {};
+  q.statuses = {"running"};
+  p = store->jobs(q);
+  EXPECT_EQ(p.total, 1);
+  EXPECT_EQ(p.jobs.at(0).id, ids[0]);
+}
+
+TEST(ServerStudy, ExpandsTheCartesianProductLastAxisFastest) {
+  const StudySpec spec = parse_study({{"base", tiny_job()},
+                                      {"axes",
+                                       {{{"pointer", "/time/end_s"}, {"values", {1, 2, 3}}},
+                                        {{"pointer", "/output/frames"}, {"values", {0, 10}}}}}},
+                                     100);
+  const auto points = expand_study(spec);
+  ASSERT_EQ(points.size(), 6u);
+  EXPECT_EQ(points[0].job["time"]["end_s"], 1);
+  EXPECT_EQ(points[0].job["output"]["frames"], 0);
+  EXPECT_EQ(points[1].job["output"]["frames"], 10);
+  EXPECT_EQ(points[5].job["time"]["end_s"], 3);
+  EXPECT_EQ(points[5].parameters, json({{"/time/end_s", 3}, {"/output/frames", 10}}));
+  EXPECT_EQ(points[3].value_index, (std::vector<std::size_t>{1, 1}));
+  EXPECT_EQ(points[0].job["scene"], tiny_job()["scene"]);  // the rest untouched
+}
+
+TEST(ServerStudy, RefusalsPointIntoTheRequest) {
+  auto pointers = [](const json& body) {
+    try {
+      parse_study(body, 10);
+    } catch (const InvalidJob& e) {
+      std::set<std::string> out;
+      for (const JobIssue& i : e.issues) out.insert(i.pointer);
+      return out;
+    }
+    return std::set<std::string>{};
+  };
+  EXPECT_TRUE(pointers({{"axes", json::array()}}).count("/base"));
+  EXPECT_TRUE(pointers({{"base", tiny_job()}}).count("/axes"));
+  EXPECT_TRUE(pointers({{"base", tiny_job()}, {"axes", {{{"pointer", "a"}, {"values", {1}}}}}})
+                  .count("/axes/0/pointer"));
+  EXPECT_TRUE(pointers({{"base", tiny_job()}, {"axes", {{{"pointer", "/a"}, {"values", 1}}}}})
+                  .count("/axes/0/values"));
+  EXPECT_TRUE(pointers({{"base", tiny_job()},
+                        {"axes",
+                         {{{"pointer", "/a"}, {"values", {1, 2, 3, 4}}},
+                          {{"pointer", "/b"}, {"values", {1, 2, 3}}}}}})
+                  .count("/axes"));  // 12 > 10 jobs
+  EXPECT_TRUE(
+      pointers(
+          {{"base", tiny_job()}, {"axes", {{{"pointer", "/a"}, {"values", {1}}}}}, {"extra", 1}})
+          .count("/extra"));
+  // A pointer through a number cannot be set.
+  const StudySpec spec = parse_study(
+      {{"base", tiny_job()}, {"axes", {{{"pointer", "/time/end_s/x"}, {"values", {1}}}}}}, 10);
+  EXPECT_THROW(expand_study(spec), InvalidJob);
+}
+
+TEST(ServerStudy, TableAndCsv) {
+  StudyRow a, b;
+  a.emplace_back("job", 1);
+  flatten_scalars({{"peak", 2.5}, {"pos", {1, 2}}, {"e", {{"drift", 0.1}}}, {"note", "a, \"b\""}},
+                  "", a);
+  b.emplace_back("job", 2);
+  flatten_scalars({{"peak", 3.5}, {"extra", true}}, "", b);
+  const StudyTable t = study_table({a, b});
+  EXPECT_EQ(t.columns, (std::vector<std::string>{"job", "e.drift", "note", "peak", "pos[0]",
+                                                 "pos[1]", "extra"}));
+  EXPECT_EQ(to_csv(t),
+            "job,e.drift,note,peak,pos[0],pos[1],extra\n"
+            "1,0.1,\"a, \"\"b\"\"\",2.5,1,2,\n"
+            "2,,,3.5,,,true\n");
+}
+
+TEST(ServerHttp, RangeHeaders) {
+  ByteRange r;
+  EXPECT_EQ(parse_range("bytes=0-9", 100, r), RangeParse::ok);
+  EXPECT_EQ(r.first, 0u);
+  EXPECT_EQ(r.last, 9u);
+  EXPECT_EQ(parse_range("bytes=90-", 100, r), RangeParse::ok);
+  EXPECT_EQ(r.length(), 10u);
+  EXPECT_EQ(parse_range("bytes=-5", 100, r), RangeParse::ok);
+  EXPECT_EQ(r.first, 95u);
+  EXPECT_EQ(parse_range("bytes=-500", 100, r), RangeParse::ok);
+  EXPECT_EQ(r.first, 0u);
+  EXPECT_EQ(parse_range("bytes=50-5000", 100, r), RangeParse::ok);
+  EXPECT_EQ(r.last, 99u);
+  EXPECT_EQ(parse_range("bytes=100-", 100, r), RangeParse::unsatisfiable);
+  EXPECT_EQ(parse_range("bytes=-0", 100, r), RangeParse::unsatisfiable);
+  for (const char* none :
+       {"bytes=0-1,5-6", "items=0-1", "bytes=a-b", "bytes=9-1", "bytes=-", "bytes=1", ""}) {
+    EXPECT_EQ(parse_range(none, 100, r), RangeParse::none) << none;
+  }
+}
+
+TEST(ServerHttp, TargetsAreDecodedPerSegment) {
+  Request r;
+  ASSERT_TRUE(parse_target("/jobs/a%2Fb/files/x%20y?status=a,b&limit=2&q=a+b&flag", r));
+  EXPECT_EQ(r.path, "/jobs/a%2Fb/files/x%20y");
+  EXPECT_EQ(r.segments, (std::vector<std::string>{"jobs", "a/b", "files", "x y"}));
+  EXPECT_EQ(r.query_value("status"), "a,b");
+  EXPECT_EQ(r.query_value("q"), "a b");
+  EXPECT_EQ(r.query_value("flag"), "");
+  EXPECT_FALSE(r.query_value("none"));
+  EXPECT_TRUE(parse_target("/", r));
+  EXPECT_TRUE(r.segments.empty());
+  EXPECT_FALSE(parse_target("/a%zz", r));
+  EXPECT_FALSE(parse_target("/a%2", r));
+  EXPECT_FALSE(parse_target("http://x/a", r));
+  EXPECT_FALSE(parse_target("", r));
+  EXPECT_FALSE(is_plain_file_name("../x"));
+  EXPECT_FALSE(is_plain_file_name(".hidden"));
+  EXPECT_FALSE(is_plain_file_name("a/b"));
+  EXPECT_FALSE(is_plain_file_name(std::string("a\0b", 3)));
+  EXPECT_TRUE(is_plain_file_name("results.h5"));
+  EXPECT_TRUE(is_plain_file_name("image-von_mises-frame3.png"));
+}
+
+TEST(ServerHttp, TokenComparison) {
+  EXPECT_TRUE(token_matches("abc", "abc"));
+  EXPECT_FALSE(token_matches("abd", "abc"));
+  EXPECT_FALSE(token_matches("ab", "abc"));
+  EXPECT_FALSE(token_matches("abcd", "abc"));
+  EXPECT_FALSE(token_matches("", "abc"));
+}
+
+TEST(ServerEventHub, FiltersResumesAndReportsGaps) {
+  EventHub hub(4);
+  std::atomic<int> woken{0};
+  auto sub = hub.subscribe("a", [&] { ++woken; });
+  const std::uint64_t start = hub.last_id();
+  hub.publish("a", "progress", "1");
+  hub.publish("b", "progress", "2");
+  hub.publish("a", "status", "3", true);
+  EXPECT_EQ(woken.load(), 2);  // only events of job a
+  auto batch = hub.after(start, "a", 10);
+  ASSERT_EQ(batch.events.size(), 2u);
+  EXPECT_FALSE(batch.gap);
+  EXPECT_TRUE(batch.events[1].terminal);
+  EXPECT_EQ(batch.seen, hub.last_id());
+  EXPECT_EQ(hub.after(start, "", 10).events.size(), 3u);
+  EXPECT_EQ(hub.after(batch.events[0].id, "", 10).events.size(), 2u);
+  for (int i = 0; i < 10; ++i) hub.publish("c", "progress", "x");
+  EXPECT_TRUE(hub.after(start, "a", 10).gap);  // fell out of the ring of 4
+  sub.reset();
+  EXPECT_EQ(hub.subscribers(), 0u);
+  hub.close();
+  EXPECT_TRUE(hub.closed());
+}
+
+}  // namespace
+}  // namespace gearsph::server::testing
