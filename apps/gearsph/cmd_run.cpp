@@ -51,8 +51,8 @@ int cmd_run(Args& args) {
   options.observer = &printer;
   const RunResult result = execute_prepared(job, *out, options).run;
   if (!quiet) {
-    std::fprintf(stderr, "gearsph run: %s in %.2f s; results in %s\n",
-                 result.status.c_str(), result.wall_s, out->c_str());
+    std::fprintf(stderr, "gearsph run: %s in %.2f s; results in %s\n", result.status.c_str(),
+                 result.wall_s, out->c_str());
   }
   if (result.status == "diverged") {
     std::fprintf(stderr, "gearsph run: %s\n", result.message.c_str());

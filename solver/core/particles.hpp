@@ -45,7 +45,7 @@ struct Particles {
   // (sigma_i / rho_i^2) C_i, cached for the momentum loop: linear and quadratic blocks.
   std::vector<double> qxx, qxy, qyx, qyy;
   std::vector<double> qqx0, qqx1, qqx2, qqy0, qqy1, qqy2;
-  std::vector<double> ext_ax, ext_ay;  // external (contact, load) accel. this step
+  std::vector<double> ext_ax, ext_ay;          // external (contact, load) accel. this step
   std::vector<double> load_ax, load_ay;        // applied loads, as accelerations (times the ramp)
   std::vector<double> contact_ax, contact_ay;  // contact part of ext_ax/ext_ay, last step
 

@@ -11,7 +11,6 @@
 #include "solver/core/particles.hpp"
 #include "solver/neighbours/neighbour_list.hpp"
 #include "solver/physics/contact.hpp"
-#include "solver/physics/contact.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 
 namespace gearsph {

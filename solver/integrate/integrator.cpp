@@ -38,8 +38,7 @@ void refresh_neighbours(Simulation& sim) {
                                         : PairSelection::SameBody;
     const double radius = kernel_support(sim.discretization.kernel) * sim.h();
     sim.neighbours.set_skin(skin);
-    sim.neighbours.build(sim.particles, radius + skin, selection, /*reference=*/false,
-                         sim.threads);
+    sim.neighbours.build(sim.particles, radius + skin, selection, /*reference=*/false, sim.threads);
   }
   if (penalty_contact(sim) &&
       (sim.contacts.builds() == 0 || sim.contacts.needs_rebuild(sim.particles))) {

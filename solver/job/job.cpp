@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "solver/integrate/integrator.hpp"
-#include "solver/physics/contact.hpp"
 #include "solver/job/json_schema.hpp"
+#include "solver/physics/contact.hpp"
 #include "solver/scene/builders.hpp"
 
 namespace gearsph {

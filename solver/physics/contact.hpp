@@ -26,9 +26,9 @@ const char* contact_model_name(ContactModel m);
 
 struct ContactConfig {
   ContactModel model = ContactModel::SeedPenalty;
-  double D = 1.0;               // dimensionless stiffness coefficient of the paper's force
-  double damping_ratio = 0.0;   // normal dashpot, fraction of critical for one pair
-  double r0_over_dx = 1.0;      // interaction range r0 (the paper: the initial spacing)
+  double D = 1.0;              // dimensionless stiffness coefficient of the paper's force
+  double damping_ratio = 0.0;  // normal dashpot, fraction of critical for one pair
+  double r0_over_dx = 1.0;     // interaction range r0 (the paper: the initial spacing)
 };
 
 // What the contact did in the last step.

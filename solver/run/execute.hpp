@@ -25,8 +25,8 @@ using OutputFactory =
 void register_output(OutputFactory factory);
 
 struct ExecuteOptions {
-  int threads = 0;                   // 0: the job's, or all cores
-  RunObserver* observer = nullptr;   // progress / cancellation from the caller
+  int threads = 0;                  // 0: the job's, or all cores
+  RunObserver* observer = nullptr;  // progress / cancellation from the caller
 };
 
 struct Execution {

@@ -38,8 +38,10 @@ Scene build_bar_impact(const SceneInput& in) {
   if (sim.discretization.dx <= 0) sim.discretization.dx = H / 10.0;
   const double dx = sim.discretization.dx;
   const long nx = lattice::cells(L, dx), ny = lattice::cells(H, dx);
-  if (ny < 2) throw JobError("/discretization", "the spacing leaves fewer than 2 particles across a bar");
-  if (nx < 4) throw JobError("/discretization", "the spacing leaves fewer than 4 particles along a bar");
+  if (ny < 2)
+    throw JobError("/discretization", "the spacing leaves fewer than 2 particles across a bar");
+  if (nx < 4)
+    throw JobError("/discretization", "the spacing leaves fewer than 4 particles along a bar");
   const double length = nx * dx, thickness = ny * dx;
   const double gap = s.at("gap_m").get<double>();
 
@@ -61,15 +63,19 @@ Scene build_bar_impact(const SceneInput& in) {
   const double t_contact = 2.0 * length / c;
   const double sigma_ref = mat.rho0 * c * v;
   scene.default_end_s = gap / (2 * v) + 1.6 * t_contact;
-  scene.columns.push_back({"left_vx_m_s", [](const Simulation& s2) { return body_velocity_x(s2, 0); }});
-  scene.columns.push_back({"right_vx_m_s", [](const Simulation& s2) { return body_velocity_x(s2, 1); }});
+  scene.columns.push_back(
+      {"left_vx_m_s", [](const Simulation& s2) { return body_velocity_x(s2, 0); }});
+  scene.columns.push_back(
+      {"right_vx_m_s", [](const Simulation& s2) { return body_velocity_x(s2, 1); }});
   // Gap between the bars' facing surfaces (negative: overlap of particle cells).
   scene.columns.push_back({"gap_m", [dx](const Simulation& s2) {
                              const Particles& q = s2.particles;
                              double right_of_left = -1e300, left_of_right = 1e300;
                              for (std::size_t i = 0; i < q.n; ++i) {
-                               if (q.body[i] == 0) right_of_left = std::max(right_of_left, q.x[i]);
-                               else left_of_right = std::min(left_of_right, q.x[i]);
+                               if (q.body[i] == 0)
+                                 right_of_left = std::max(right_of_left, q.x[i]);
+                               else
+                                 left_of_right = std::min(left_of_right, q.x[i]);
                              }
                              return left_of_right - right_of_left - dx;
                            }});

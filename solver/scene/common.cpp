@@ -25,8 +25,7 @@ std::size_t add_particle(Simulation& sim, double x, double y, int motion, double
   const double dx = sim.discretization.dx;
   const std::size_t i = sim.particles.n;
   const double v = volume > 0.0 ? volume : dx * dx;
-  sim.particles.add(x, y, mat.rho0 * v, mat.rho0, static_cast<int>(sim.bodies.size() - 1),
-                    motion);
+  sim.particles.add(x, y, mat.rho0 * v, mat.rho0, static_cast<int>(sim.bodies.size() - 1), motion);
   sim.particles.cs[i] = mat.p_wave_speed();
   return i;
 }

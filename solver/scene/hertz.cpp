@@ -81,9 +81,8 @@ Scene build_hertz(const SceneInput& in) {
   const double cap_height = std::min(R, s.at("cap_height_over_a").get<double>() * a_ref);
   const double block_half = s.at("block_half_width_over_a").get<double>() * a_ref;
   const double block_depth = s.at("block_depth_over_a").get<double>() * a_ref;
-  const long fixed_rows =
-      static_cast<long>(std::ceil(kernel_support(sim.discretization.kernel) *
-                                  sim.discretization.h_over_dx));
+  const long fixed_rows = static_cast<long>(
+      std::ceil(kernel_support(sim.discretization.kernel) * sim.discretization.h_over_dx));
 
   sim.motions.push_back(Motion::fixed("block base"));
   // Cylinder cap, centre (0, R), filled with concentric rings of particles
