@@ -26,5 +26,6 @@ std::string read_file(const std::string& path);
 int cmd_run(Args& args);
 int cmd_validate(Args& args);
 int cmd_schema(Args& args);
+int cmd_geometry(Args& args);
 
 }  // namespace gearsph::cli

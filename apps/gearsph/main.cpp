@@ -22,6 +22,8 @@ usage:
       and writes DIR/validation.json (DIR defaults to ./validation)
   gearsph schema
       print the job schema (JSON Schema draft-07)
+  gearsph geometry JOB.json --out DIR
+      the scene's outlines and particles as SVG and CSV, without running it
   gearsph serve [--port 8080] [--bind 127.0.0.1] [--data DIR] [--workers N] [--threads-per-job M] [--token-file F] [--cors-origin ORIGIN] [--web DIR]
       the job service: HTTP API, job store, worker pool (docs/api.md lists every option)
   gearsph submit JOB.json --server URL [--wait] [--out DIR] [--token-file F]
@@ -55,6 +57,7 @@ int main(int argc, char** argv) {
     if (cmd == "run") return gearsph::cli::cmd_run(args);
     if (cmd == "validate") return gearsph::cli::cmd_validate(args);
     if (cmd == "schema") return gearsph::cli::cmd_schema(args);
+    if (cmd == "geometry") return gearsph::cli::cmd_geometry(args);
 #ifdef GEARSPH_WITH_SERVICE
     if (cmd == "serve") return gearsph::cli::cmd_serve(args);
 #endif

@@ -48,6 +48,11 @@ struct Particles {
   std::vector<double> ext_ax, ext_ay;          // external (contact, load) accel. this step
   std::vector<double> load_ax, load_ay;        // applied loads, as accelerations (times the ramp)
   std::vector<double> contact_ax, contact_ay;  // contact part of ext_ax/ext_ay, last step
+  // Surface of the body, for contact (scene/surfaces.hpp): outward normal in
+  // the reference configuration and depth of the particle below the surface;
+  // depth = +inf for interior particles. rot: current rotation angle of the
+  // material around the particle (CCW), which turns the normal.
+  std::vector<double> surf_nx, surf_ny, surf_depth, rot;
 
   void resize(std::size_t count);
   void add(double px, double py, double m, double density, int body_index, int motion_index);

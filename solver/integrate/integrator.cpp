@@ -10,6 +10,7 @@
 #include "solver/physics/stress_rate.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 #include "solver/physics/velocity_gradient.hpp"
+#include "solver/scene/surfaces.hpp"
 
 namespace gearsph::integrate {
 
@@ -23,8 +24,7 @@ bool total_lagrangian(const Simulation& sim) {
 }
 
 bool penalty_contact(const Simulation& sim) {
-  return sim.bodies.size() > 1 && (sim.contact.model == ContactModel::SeedPenalty ||
-                                   sim.contact.model == ContactModel::Hertz);
+  return sim.bodies.size() > 1 && physics::is_penalty(sim.contact.model);
 }
 
 void refresh_neighbours(Simulation& sim) {
@@ -43,8 +43,12 @@ void refresh_neighbours(Simulation& sim) {
   if (penalty_contact(sim) &&
       (sim.contacts.builds() == 0 || sim.contacts.needs_rebuild(sim.particles))) {
     sim.contacts.set_skin(skin);
-    sim.contacts.build(sim.particles, sim.contact.r0_over_dx * sim.discretization.dx + skin,
-                       PairSelection::OtherBody, /*reference=*/false, sim.threads);
+    // Surface contact reaches particles up to 1.5 dx below each surface.
+    const double reach = sim.contact.model == ContactModel::Surface
+                             ? (2.0 * scenes::kSurfaceReachOverDx + 1.0) * sim.discretization.dx
+                             : sim.contact.r0_over_dx * sim.discretization.dx;
+    sim.contacts.build(sim.particles, reach + skin, PairSelection::OtherBody,
+                       /*reference=*/false, sim.threads);
   }
 }
 

@@ -10,6 +10,7 @@
 #include "solver/job/json_schema.hpp"
 #include "solver/physics/contact.hpp"
 #include "solver/scene/builders.hpp"
+#include "solver/scene/surfaces.hpp"
 
 namespace gearsph {
 
@@ -58,9 +59,10 @@ Discretization read_discretization(const nlohmann::json& d) {
 ContactConfig read_contact(const nlohmann::json& c) {
   ContactConfig out;
   const std::string model = c.at("model").get<std::string>();
-  out.model = model == "kernel"  ? ContactModel::Kernel
-              : model == "hertz" ? ContactModel::Hertz
-                                 : ContactModel::SeedPenalty;
+  out.model = model == "kernel"            ? ContactModel::Kernel
+              : model == "hertz"           ? ContactModel::Hertz
+              : model == "surface_penalty" ? ContactModel::Surface
+                                           : ContactModel::SeedPenalty;
   out.D = c.at("D").get<double>();
   out.damping_ratio = c.at("damping_ratio").get<double>();
   out.r0_over_dx = c.at("r0_over_dx").get<double>();
@@ -93,12 +95,14 @@ MethodConfig read_method(const nlohmann::json& m) {
 Scene build_scene(const nlohmann::json& job, const Discretization& disc) {
   const nlohmann::json& s = job.at("scene");
   const std::string type = s.at("type").get<std::string>();
-  const scenes::SceneInput in{s, disc};
+  const nlohmann::json& t = job.at("time");
+  const scenes::SceneInput in{s, disc, t.contains("end_s") ? t.at("end_s").get<double>() : 0.0};
   if (type == "plate") return scenes::build_plate(in);
   if (type == "strip_wave") return scenes::build_strip_wave(in);
   if (type == "spinning_disk") return scenes::build_spinning_disk(in);
   if (type == "bar_impact") return scenes::build_bar_impact(in);
   if (type == "hertz") return scenes::build_hertz(in);
+  if (type == "rack_pinion") return scenes::build_rack_pinion(in);
   refuse("/scene/type", "is not a scene this build knows");
 }
 
@@ -150,6 +154,7 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads) {
   }
   Simulation& sim = out.scene.sim;
   sim.method = read_method(job.at("method"));
+  if (sim.bodies.size() > 1) scenes::assign_surfaces(out.scene);
   sim.contact = read_contact(job.at("method").at("contact"));
   if (sim.contact.model == ContactModel::Kernel &&
       sim.method.formulation == Formulation::TotalLagrangian) {
@@ -166,13 +171,25 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads) {
   TimeStepRequest request;
   if (t.contains("dt_s")) request.dt_s = t.at("dt_s").get<double>();
   if (t.contains("cfl")) request.cfl = t.at("cfl").get<double>();
+  // A scene may carry its own default step (the paper's case: 4e-8 s).
   request.allow_unstable = t.at("allow_unstable").get<bool>();
   request.extra_limit_s = physics::contact_time_step_limit(sim);
   request.extra_name = "contact stiffness";
+  // A scene may carry its own default step (the paper's case: 4e-8 s at
+  // 1 mm); at a finer spacing it may be unstable, and then the automatic
+  // step applies instead.
+  bool scene_step = false;
+  if (!request.dt_s && !request.cfl && out.scene.default_dt_s > 0) {
+    request.dt_s = out.scene.default_dt_s;
+    scene_step = true;
+  }
   try {
     out.time_step = choose_time_step(sim, request);
+    if (scene_step) out.time_step.chosen_by = "scene default";
   } catch (const TimeStepError& e) {
-    refuse(request.dt_s ? "/time/dt_s" : "/time/cfl", e.what());
+    if (!scene_step) refuse(request.dt_s ? "/time/dt_s" : "/time/cfl", e.what());
+    request.dt_s.reset();
+    out.time_step = choose_time_step(sim, request);
   }
   sim.dt = out.time_step.dt;
   out.steps = static_cast<std::int64_t>(std::ceil(out.end_s / sim.dt - 1e-9));

@@ -6,6 +6,7 @@
 #include "solver/core/simulation.hpp"
 #include "solver/physics/contact_hertz.hpp"
 #include "solver/physics/contact_seed_penalty.hpp"
+#include "solver/physics/contact_surface.hpp"
 
 namespace gearsph {
 
@@ -13,6 +14,8 @@ const char* contact_model_name(ContactModel m) {
   switch (m) {
     case ContactModel::SeedPenalty:
       return "seed_penalty";
+    case ContactModel::Surface:
+      return "surface_penalty";
     case ContactModel::Hertz:
       return "hertz";
     case ContactModel::Kernel:
@@ -24,6 +27,10 @@ const char* contact_model_name(ContactModel m) {
 }
 
 namespace physics {
+
+bool is_penalty(ContactModel m) {
+  return m == ContactModel::SeedPenalty || m == ContactModel::Surface || m == ContactModel::Hertz;
+}
 
 namespace {
 
@@ -41,8 +48,7 @@ constexpr double kPartnersAtOnce = 3.0;
 
 double contact_time_step_limit(const Simulation& sim) {
   const ContactConfig& c = sim.contact;
-  if (c.model != ContactModel::SeedPenalty && c.model != ContactModel::Hertz) return 0.0;
-  if (sim.bodies.size() < 2) return 0.0;
+  if (!is_penalty(c.model) || sim.bodies.size() < 2) return 0.0;
   const double dx = sim.discretization.dx, r0 = c.r0_over_dx * dx;
   double omega2 = 0.0;
   for (std::size_t a = 0; a < sim.bodies.size(); ++a) {
@@ -53,9 +59,9 @@ double contact_time_step_limit(const Simulation& sim) {
       const double vol = 2.0 * va * vb / (va + vb);
       // Stiffness at the deepest overlap we tolerate (r0/2) for Hertz; the
       // linear law has one stiffness.
-      const double k = c.model == ContactModel::SeedPenalty
-                           ? seed_penalty(c.D, e_star, vol, r0, 0.0).stiffness
-                           : hertz_penalty(e_star, dx, 0.5 * r0).stiffness;
+      const double k = c.model == ContactModel::Hertz
+                           ? hertz_penalty(e_star, dx, 0.5 * r0).stiffness
+                           : seed_penalty(c.D, e_star, vol, r0, 0.0).stiffness;
       const double inv_m = 1.0 / (ma.rho0 * va) + 1.0 / (mb.rho0 * vb);
       omega2 = std::max(omega2, kPartnersAtOnce * k * inv_m);
     }
@@ -74,9 +80,10 @@ void contact_forces(Simulation& sim, double dt) {
   state.active_pairs = 0;
   state.max_penetration = 0.0;
   state.stored_energy = 0.0;
-  if (c.model != ContactModel::SeedPenalty && c.model != ContactModel::Hertz) return;
+  if (!is_penalty(c.model)) return;
 
   const double dx = sim.discretization.dx, r0 = c.r0_over_dx * dx;
+  const bool surface = c.model == ContactModel::Surface;
   const std::size_t n = p.n;
   constexpr int kMaxBodies = 8;
   double fx_body[kMaxBodies] = {}, fy_body[kMaxBodies] = {};
@@ -93,17 +100,39 @@ void contact_forces(Simulation& sim, double dt) {
     for (std::uint32_t k = nl.rows[i]; k < nl.rows[i + 1]; ++k) {
       const std::uint32_t j = nl.j[k];
       const double dxij = p.x[i] - p.x[j], dyij = p.y[i] - p.y[j];
-      const double r2 = dxij * dxij + dyij * dyij;
-      if (r2 >= r0 * r0) continue;
-      const double r = std::sqrt(r2), overlap = r0 - r;
-      const double nx = dxij / r, ny = dyij / r;
+      double nx, ny, overlap, weight = 1.0;
+      if (surface) {
+        // True-surface gap (contact_surface.hpp); normals turned with the material.
+        if (!std::isfinite(p.surf_depth[i]) || !std::isfinite(p.surf_depth[j])) continue;
+        const double ci = std::cos(p.rot[i]), si = std::sin(p.rot[i]);
+        const double cj = std::cos(p.rot[j]), sj = std::sin(p.rot[j]);
+        const SurfacePair sp = surface_pair(
+            dxij, dyij, ci * p.surf_nx[i] - si * p.surf_ny[i],
+            si * p.surf_nx[i] + ci * p.surf_ny[i], cj * p.surf_nx[j] - sj * p.surf_ny[j],
+            sj * p.surf_nx[j] + cj * p.surf_ny[j], p.surf_depth[i], p.surf_depth[j], dx);
+        if (!sp.active) continue;
+        nx = sp.nx;
+        ny = sp.ny;
+        overlap = sp.overlap;
+        weight = sp.weight;
+      } else {
+        const double r2 = dxij * dxij + dyij * dyij;
+        if (r2 >= r0 * r0) continue;
+        const double r = std::sqrt(r2);
+        overlap = r0 - r;
+        nx = dxij / r;
+        ny = dyij / r;
+      }
       const Material& mj = sim.material_of(j);
       const double e_star = contact_modulus(mi, mj);
       const double vj = p.mass[j] / p.rho[j];
       const double vol = 2.0 * vi * vj / (vi + vj);
-      const PairLaw law = c.model == ContactModel::SeedPenalty
-                              ? seed_penalty(c.D, e_star, vol, r0, overlap)
-                              : hertz_penalty(e_star, dx, overlap);
+      PairLaw law = c.model == ContactModel::Hertz
+                        ? hertz_penalty(e_star, dx, overlap)
+                        : seed_penalty(c.D, e_star, vol, surface ? dx : r0, overlap);
+      law.force *= weight;
+      law.stiffness *= weight;
+      law.energy *= weight;
       // Dashpot on the normal approach speed, as a fraction of critical
       // damping of the pair oscillator; the total never pulls (no adhesion).
       const double vn = (p.vx[i] - p.vx[j]) * nx + (p.vy[i] - p.vy[j]) * ny;  // > 0 separating

@@ -17,6 +17,7 @@ struct Simulation;
 
 enum class ContactModel {
   SeedPenalty,  // the paper's force, linear in the overlap (contact_seed_penalty.hpp)
+  Surface,      // the same law on the gap between the true surfaces (contact_surface.hpp)
   Hertz,        // a Hertz-type penalty, overlap^(3/2) (contact_hertz.hpp)
   Kernel,       // bodies coupled through the SPH sums (shows the paper's adhesion)
   None,         // bodies pass through each other (only for single-body scenes)
@@ -41,6 +42,9 @@ struct ContactState {
 };
 
 namespace physics {
+
+// Models that act through the contact list (not through the kernel).
+bool is_penalty(ContactModel m);
 
 // The pair stiffness dF/d(overlap) at zero overlap... for the time-step bound:
 // the stiffest contact oscillator, omega^2 = k (1/m_i + 1/m_j) times the

@@ -59,6 +59,7 @@ void update_stress(Simulation& sim, double dt) {
     p.syy[i] = ss * sxx - 2.0 * cs * sxy + cc * syy + dt * two_g * (dyy - third_tr);
     p.sxy[i] = cs * (syy - sxx) + (cc - ss) * sxy + dt * two_g * dxy;
     p.szz[i] += dt * two_g * (-third_tr);
+    p.rot[i] -= dt * w;  // material rotation rate (CCW) is -Omega_xy
 
     cache_for_momentum(p, i, as);
   }

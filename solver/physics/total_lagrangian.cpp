@@ -93,6 +93,8 @@ void total_lagrangian_stress(Simulation& sim) {
     p.fxy[i] = fxy;
     p.fyx[i] = fyx;
     p.fyy[i] = fyy;
+    // Rotation of the polar decomposition F = R U (2D: one angle).
+    p.rot[i] = std::atan2(fyx - fxy, fxx + fyy);
 
     // Saint Venant-Kirchhoff, plane strain (E_zz = 0).
     const Material& mat = sim.material_of(i);

@@ -94,6 +94,11 @@ nlohmann::json make_summary(const PreparedJob& job, const RunResult& result,
                          {"h_m", sim.h()},
                          {"kernel", kernel_name(sim.discretization.kernel)}};
   s["analysis"] = scene.analyse ? scene.analyse(result.history, sim) : nlohmann::json::object();
+  // Scenes may promote some results to stable top-level keys.
+  if (s["analysis"].contains("summary_fields")) {
+    for (auto& [key, value] : s["analysis"]["summary_fields"].items()) s[key] = value;
+    s["analysis"].erase("summary_fields");
+  }
   return s;
 }
 

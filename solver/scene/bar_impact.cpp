@@ -57,6 +57,11 @@ Scene build_bar_impact(const SceneInput& in) {
   end_body(sim);
   Particles& p = sim.particles;
   for (std::size_t i = 0; i < p.n; ++i) p.vx[i] = p.body[i] == 0 ? v : -v;
+  const double y0 = -0.5 * thickness, y1 = 0.5 * thickness;
+  scene.outlines.push_back(
+      {"bar_left", 0, {{-length, y0}, {0.0, y0}, {0.0, y1}, {-length, y1}}, true});
+  scene.outlines.push_back(
+      {"bar_right", 1, {{gap, y0}, {gap + length, y0}, {gap + length, y1}, {gap, y1}}, true});
   sim.domain = grown_bounds(p, 2 * length);
 
   const double c = mat.strip_wave_speed();

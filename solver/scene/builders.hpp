@@ -12,6 +12,7 @@ namespace gearsph::scenes {
 struct SceneInput {
   const nlohmann::json& scene;
   Discretization discretization;
+  double end_s = 0.0;  // the job's end time, 0 when it takes the scene's default
 };
 
 Material read_material(const nlohmann::json& material);
@@ -21,6 +22,7 @@ Scene build_strip_wave(const SceneInput& in);     // validation.md section 2
 Scene build_spinning_disk(const SceneInput& in);  // validation.md section 4
 Scene build_bar_impact(const SceneInput& in);     // validation.md section 3
 Scene build_hertz(const SceneInput& in);          // validation.md section 6
+Scene build_rack_pinion(const SceneInput& in);    // the paper's gear case
 
 // Common helpers for builders.
 void add_body(Simulation& sim, const std::string& name, const Material& material);

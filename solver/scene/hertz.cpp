@@ -111,6 +111,21 @@ Scene build_hertz(const SceneInput& in) {
   });
   end_body(sim);
 
+  // Outlines: the cap (circular arc closed by its top chord) and the block.
+  {
+    Outline cap{"cylinder", 0, {}, true};
+    const double a_top = std::asin(std::clamp((cap_height - R) / R, -1.0, 1.0));
+    const int n_arc = 720;
+    for (int k = 0; k <= n_arc; ++k) {
+      // From the right end of the chord, down around the bottom, to the left end.
+      const double a = a_top - (std::numbers::pi + 2.0 * a_top) * k / n_arc;
+      cap.points.push_back({R * std::cos(a), R + R * std::sin(a)});
+    }
+    std::reverse(cap.points.begin(), cap.points.end());  // counter-clockwise
+    scene.outlines.push_back(cap);
+    const double hx = 0.5 * bx * dx, by0 = -by * dx;
+    scene.outlines.push_back({"block", 1, {{-hx, by0}, {hx, by0}, {hx, 0.0}, {-hx, 0.0}}, true});
+  }
   // Uniform traction P' on the cap's top row.
   Particles& p = sim.particles;
   const Body& cyl = sim.bodies[0];

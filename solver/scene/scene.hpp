@@ -2,6 +2,7 @@
 // A scene: the particles and constraints of one job, plus what the scene
 // itself knows how to measure (its history columns and its analysis, e.g.
 // the plate's period against the thin-plate formula).
+#include <array>
 #include <functional>
 #include <optional>
 #include <stdexcept>
@@ -20,6 +21,15 @@ struct HistoryColumn {
   std::function<double(const Simulation&)> value;
 };
 
+// A drawn outline of a body in its reference configuration (tooth profiles,
+// plate edges), for renderers and ParaView users.
+struct Outline {
+  std::string name;
+  int body = -1;
+  std::vector<std::array<double, 2>> points;  // [m]
+  bool closed = true;
+};
+
 struct Scene {
   Simulation sim;
   std::string type;
@@ -28,6 +38,8 @@ struct Scene {
   std::function<nlohmann::json(const History&, const Simulation&)> analyse;
   // Scene defaults used when the job leaves them open.
   double default_end_s = 0.0;
+  double default_dt_s = 0.0;  // 0: the automatic step (a fraction of the stable limit)
+  std::vector<Outline> outlines;
   // What was modelled, for the summary (counts, dimensions, notes).
   nlohmann::json description = nlohmann::json::object();
 };

@@ -1,0 +1,104 @@
+// gearsph geometry JOB.json --out DIR: the scene a job would simulate, as
+// pictures and tables a person can check before running it: outlines and
+// particles (SVG, coloured by body and by kinematic role) and CSV files.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "apps/gearsph/cli.hpp"
+#include "solver/geometry/svg.hpp"
+#include "solver/job/job.hpp"
+
+namespace gearsph::cli {
+
+namespace {
+
+// Colours by body (free particles) and a grey for driven/guided ones.
+const char* const kBodyColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd"};
+const char* const kDrivenColour = "#8c8c8c";
+
+geometry::SvgDrawing drawing_of(const PreparedJob& job) {
+  const Simulation& sim = job.scene.sim;
+  const Particles& p = sim.particles;
+  geometry::SvgDrawing d;
+  d.title = job.job.at("name").get<std::string>() + " (" + job.scene.type +
+            "): " + std::to_string(p.n) +
+            " particles, dx = " + std::to_string(sim.discretization.dx * 1e3).substr(0, 5) + " mm";
+  // Scale so that the drawing is about 1200 px wide.
+  double x0 = 1e300, x1 = -1e300;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    x0 = std::min(x0, p.x[i]);
+    x1 = std::max(x1, p.x[i]);
+  }
+  d.px_per_mm = std::clamp(1200.0 / std::max(1e-3, (x1 - x0) * 1e3), 0.5, 200.0);
+  for (std::size_t b = 0; b < sim.bodies.size(); ++b) {
+    geometry::SvgDots free_dots, driven_dots;
+    free_dots.colour = kBodyColours[b % 4];
+    driven_dots.colour = kDrivenColour;
+    free_dots.radius_m = driven_dots.radius_m = 0.4 * sim.discretization.dx;
+    for (std::size_t i = sim.bodies[b].begin; i < sim.bodies[b].end; ++i) {
+      (p.motion[i] == 0 ? free_dots : driven_dots).points.push_back({p.x[i], p.y[i]});
+    }
+    d.dots.push_back(free_dots);
+    d.dots.push_back(driven_dots);
+  }
+  for (const Outline& o : job.scene.outlines) {
+    geometry::SvgPolyline line;
+    for (const auto& q : o.points) line.points.push_back({q[0], q[1]});
+    line.closed = o.closed;
+    line.width_px = 1.2;
+    d.lines.push_back(line);
+  }
+  return d;
+}
+
+}  // namespace
+
+int cmd_geometry(Args& args) {
+  const auto out = args.option("out");
+  const auto pos = args.positional();
+  if (pos.size() != 1 || !out)
+    throw std::invalid_argument("usage: gearsph geometry JOB.json --out DIR");
+  PreparedJob job;
+  try {
+    job = prepare_job(parse_job_text(read_file(pos[0])), 1);
+  } catch (const InvalidJob& e) {
+    std::fprintf(stderr, "gearsph geometry: %s is not a valid job:\n", pos[0].c_str());
+    for (const JobIssue& i : e.issues) {
+      std::fprintf(stderr, "  %s: %s\n", i.pointer.empty() ? "(document)" : i.pointer.c_str(),
+                   i.message.c_str());
+    }
+    return 2;
+  }
+  std::filesystem::create_directories(*out);
+  const Simulation& sim = job.scene.sim;
+  const Particles& p = sim.particles;
+  geometry::write_svg(*out + "/geometry.svg", drawing_of(job));
+
+  std::ostringstream csv;
+  csv << "particle,body,motion,x_m,y_m,mass_kg_per_m\n";
+  csv.precision(10);
+  for (std::size_t i = 0; i < p.n; ++i) {
+    csv << i << ',' << sim.bodies[p.body[i]].name << ',' << sim.motions[p.motion[i]].name << ','
+        << p.x[i] << ',' << p.y[i] << ',' << p.mass[i] << '\n';
+  }
+  std::ofstream(*out + "/particles.csv") << csv.str();
+  std::ostringstream ol;
+  ol << "outline,body,point,x_m,y_m\n";
+  ol.precision(10);
+  for (const Outline& o : job.scene.outlines) {
+    for (std::size_t k = 0; k < o.points.size(); ++k) {
+      ol << o.name << ',' << o.body << ',' << k << ',' << o.points[k][0] << ',' << o.points[k][1]
+         << '\n';
+    }
+  }
+  std::ofstream(*out + "/outlines.csv") << ol.str();
+  std::ofstream(*out + "/model.json") << job.scene.description.dump(2) << '\n';
+  std::printf("%zu particles", p.n);
+  for (const Body& b : sim.bodies) std::printf(", %s %zu", b.name.c_str(), b.count());
+  std::printf("; wrote %s/geometry.svg, particles.csv, outlines.csv, model.json\n", out->c_str());
+  return 0;
+}
+
+}  // namespace gearsph::cli

@@ -1,0 +1,121 @@
+#include "solver/gear/gear_rating.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace gearsph::gear {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+double involute(double a) {
+  return std::tan(a) - a;
+}
+
+}  // namespace
+
+ContactPath rack_contact_path(const geometry::PinionGeometry& g) {
+  const geometry::BasicRack& tool = g.spec().tool;
+  const double m = tool.module_m, alpha = tool.pressure_angle_rad;
+  const double x = g.spec().profile_shift;
+  const double rb = g.base_radius();
+  ContactPath c;
+  c.base_pitch = kPi * m * std::cos(alpha);
+  // The mating rack's tip line is h_aP above its datum line, which sits
+  // x m below the pinion's rolling line; it meets the line of action at
+  // r sin(alpha) - (h_aP - x m)/sin(alpha) from T.
+  const double rack_tip =
+      g.pitch_radius() * std::sin(alpha) - (tool.addendum() - x * m) / std::sin(alpha);
+  const double form = std::sqrt(std::max(0.0, g.form_radius() * g.form_radius() - rb * rb));
+  c.start_from_T = std::max(rack_tip, form);
+  c.end_from_T = std::sqrt(g.tip_radius() * g.tip_radius() - rb * rb);
+  c.contact_ratio = (c.end_from_T - c.start_from_T) / c.base_pitch;
+  const double g_hpstc = std::min(c.start_from_T + c.base_pitch, c.end_from_T);
+  c.hpstc_radius = std::sqrt(rb * rb + g_hpstc * g_hpstc);
+  return c;
+}
+
+double lewis_form_factor(int teeth) {
+  // 20-degree full-depth involute, load at the tip (form factor on the module).
+  struct Row {
+    int z;
+    double y;
+  };
+  static const Row table[] = {{12, 0.245}, {13, 0.261},  {14, 0.277},  {15, 0.290}, {16, 0.296},
+                              {17, 0.303}, {18, 0.309},  {19, 0.314},  {20, 0.322}, {21, 0.328},
+                              {22, 0.331}, {24, 0.337},  {26, 0.346},  {28, 0.353}, {30, 0.359},
+                              {34, 0.371}, {38, 0.384},  {43, 0.397},  {50, 0.409}, {60, 0.422},
+                              {75, 0.435}, {100, 0.447}, {150, 0.460}, {300, 0.472}};
+  if (teeth < table[0].z) throw std::invalid_argument("Lewis table starts at 12 teeth");
+  for (std::size_t k = 1; k < std::size(table); ++k) {
+    if (teeth <= table[k].z) {
+      const double f = double(teeth - table[k - 1].z) / double(table[k].z - table[k - 1].z);
+      return table[k - 1].y + f * (table[k].y - table[k - 1].y);
+    }
+  }
+  return table[std::size(table) - 1].y;
+}
+
+IsoToothForm iso_tooth_form(const geometry::PinionGeometry& g, double load_radius) {
+  const geometry::BasicRack& tool = g.spec().tool;
+  const double m = tool.module_m, alpha = tool.pressure_angle_rad;
+  const double x = g.spec().profile_shift;
+  const int z = g.teeth();
+  const double h_fp = tool.dedendum() / m, rho_fp = tool.root_radius() / m;
+  // ISO 6336-3:2006, eqs. (17)-(22) in module units (no protuberance).
+  const double E =
+      kPi / 4.0 - h_fp * std::tan(alpha) - (1.0 - std::sin(alpha)) * rho_fp / std::cos(alpha);
+  const double G = rho_fp - h_fp + x;
+  const double H = 2.0 / z * (kPi / 2.0 - E) - kPi / 3.0;
+  double theta = kPi / 6.0;
+  for (int it = 0; it < 50; ++it) theta = 2.0 * G / z * std::tan(theta) - H;
+  IsoToothForm f;
+  f.theta = theta;
+  f.s_Fn = m * (z * std::sin(kPi / 3.0 - theta) + std::sqrt(3.0) * (G / std::cos(theta) - rho_fp));
+  f.rho_F =
+      m * (rho_fp + 2.0 * G * G / (std::cos(theta) * (z * std::pow(std::cos(theta), 2) - 2.0 * G)));
+  // Load at radius r_e on the involute: pressure angle alpha_en at r_e, half
+  // tooth angle gamma_e there, load angle alpha_Fen = alpha_en - gamma_e.
+  const double rb = g.base_radius();
+  f.load_radius = load_radius;
+  const double alpha_en = std::acos(rb / load_radius);
+  const double gamma_e =
+      (kPi / 2.0 + 2.0 * x * std::tan(alpha)) / z + involute(alpha) - involute(alpha_en);
+  f.alpha_Fen = alpha_en - gamma_e;
+  const double d_en = 2.0 * load_radius / m;
+  f.h_Fe = 0.5 * m *
+           ((std::cos(gamma_e) - std::sin(gamma_e) * std::tan(f.alpha_Fen)) * d_en -
+            z * std::cos(kPi / 3.0 - theta) - G / std::cos(theta) + rho_fp);
+  f.Y_F = (6.0 * f.h_Fe / m * std::cos(f.alpha_Fen)) / (std::pow(f.s_Fn / m, 2) * std::cos(alpha));
+  const double L = f.s_Fn / f.h_Fe, qs = f.s_Fn / (2.0 * f.rho_F);
+  f.Y_S = (1.2 + 0.13 * L) * std::pow(qs, 1.0 / (1.21 + 2.3 / L));
+  return f;
+}
+
+ThirtyDegreePoints thirty_degree_points(const geometry::PinionGeometry& g) {
+  // Walk the half tooth from the root (space centre) up the fillet; the
+  // tangent turns from horizontal to nearly vertical. The 30-degree point is
+  // where it makes 30 degrees with the axis (+y), i.e. 60 degrees with +x.
+  const std::vector<geometry::Point>& h = g.half_tooth();
+  const double target = kPi / 3.0;
+  for (std::size_t k = 1; k + 1 < h.size(); ++k) {
+    const geometry::Point a = h[k - 1], b = h[k], c = h[k + 1];
+    auto slope = [](geometry::Point p, geometry::Point q) {
+      return std::atan2(std::abs(q.y - p.y), std::abs(q.x - p.x));
+    };
+    const double s0 = slope(a, b), s1 = slope(b, c);
+    if (s0 <= target && s1 >= target && std::hypot(b.x, b.y) < g.form_radius() + 1e-9) {
+      ThirtyDegreePoints t;
+      t.right = b;
+      t.left = {-b.x, b.y};
+      t.chord = 2.0 * std::abs(b.x);
+      return t;
+    }
+  }
+  throw std::runtime_error("no 30-degree tangent point on the fillet");
+}
+
+}  // namespace gearsph::gear
