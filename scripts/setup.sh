@@ -16,9 +16,23 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev python3-pysph curl
   # results checked with ParaView's own reader (pvpython), rendering fonts
   paraview python3-paraview python3-h5py libfreetype-dev fonts-dejavu-core
+  # scale-out (docs/scale-out.md): the PostgreSQL job store's client library,
+  # and the engines its tests start on loopback (PostgreSQL, single-node Slurm)
+  libpq-dev postgresql slurm-wlm munge
+  # the dashboard's browser tests (headless Chromium driven by playwright-core)
+  chromium
 )
+# Node.js for the dashboard's npm packages (uPlot, playwright-core); a newer
+# Node.js already installed (e.g. from NodeSource) is kept.
+if ! command -v npm >/dev/null; then PACKAGES+=(nodejs npm); fi
 
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${PACKAGES[@]}" >/dev/null
 echo "setup: Debian packages installed"
+
+# The dashboard's chart library and the browser-test driver, exactly as
+# locked in package-lock.json; postinstall copies uPlot to web/vendor/.
+cd "$(dirname "$0")/.."
+npm ci --no-audit --no-fund --loglevel=error
+echo "setup: npm packages installed (web/vendor/ ready)"

@@ -1,10 +1,27 @@
 #include "server/config.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <stdexcept>
 
 namespace gearsph::server {
+
+std::filesystem::path results_dir_of(const ServerConfig& config) {
+  return config.results_dir.empty() ? config.data_dir / "jobs" : config.results_dir;
+}
+
+bool shared_store(const ServerConfig& config) {
+  return !config.store.empty();
+}
+
+std::string process_name() {
+  char host[256] = {};
+  if (::gethostname(host, sizeof host - 1) != 0) std::snprintf(host, sizeof host, "localhost");
+  return std::string(host) + ":" + std::to_string(::getpid());
+}
 
 void resolve_defaults(ServerConfig& config, int cores) {
   cores = std::max(1, cores);

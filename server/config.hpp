@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "server/image_provider.hpp"
 
@@ -35,6 +36,16 @@ struct ServerConfig {
   std::string bind = "127.0.0.1";
   unsigned short port = 8080;  // 0: any free port (printed at start-up)
   std::filesystem::path data_dir = "data";
+  // Job store: "" for SQLite at data_dir/gearsph.db (this server alone), or
+  // a location other processes share: postgresql://... or sqlite:PATH.
+  std::string store;
+  std::filesystem::path results_dir;     // the job directories; "" for data_dir/jobs
+  bool local_workers = true;             // false: the API only; workers run elsewhere
+  std::string dispatch = "local";        // "local" (worker pool) or "slurm" (sbatch per job)
+  double lease_s = 30.0;                 // claims on a shared store expire unless renewed
+  std::vector<std::string> sbatch_args;  // --dispatch slurm: more sbatch options
+  std::filesystem::path
+      gearsph_executable;          // --dispatch slurm: what the nodes run; "" for this one
   int workers = 0;                 // jobs run at the same time; 0: chosen by resolve_defaults
   int threads_per_job = 0;         // OpenMP threads of each job; 0: chosen by resolve_defaults
   std::string token;               // non-empty: every request needs "Authorization: Bearer <token>"
@@ -50,6 +61,12 @@ struct ServerConfig {
   Timeouts timeouts;
   ImageProvider image_provider;  // empty: the images endpoint answers 501
 };
+
+// Where the job directories are; whether other processes share the store.
+std::filesystem::path results_dir_of(const ServerConfig& config);
+bool shared_store(const ServerConfig& config);
+// "host:pid": names this process's claims in a shared store.
+std::string process_name();
 
 // Fills workers / threads_per_job so that workers x threads <= cores: by
 // default one job at a time with every core (a single large run finishes

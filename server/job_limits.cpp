@@ -32,6 +32,10 @@ void collect_lengths(const nlohmann::json& j, std::vector<double>& out) {
       continue;
     }
     if (!value.is_number() || key.find("_per_") != std::string::npos) continue;
+    // A clearance (a gear's backlash, a tenth of a millimetre) is no body
+    // dimension: taken as the smallest length it would let a huge scene be
+    // built before its size is known.
+    if (key.find("backlash") != std::string::npos) continue;
     const auto ends = [&](const std::string& s) {
       return key.size() > s.size() && key.compare(key.size() - s.size(), s.size(), s) == 0;
     };

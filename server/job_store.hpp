@@ -8,6 +8,14 @@
 //   accepted --claim--> running --finish--> successful | failed
 //      |                  |  \--requeue (server stopping / crashed)--> accepted
 //      +--dismiss--+------+--dismiss--> dismissed   (successful/failed too)
+//
+// Who runs a job: a worker claims it and holds it under a lease that its
+// heartbeat renews (renew); a job whose lease ran out (the worker died or
+// lost the store) goes back to the queue (reclaim_expired). A worker with
+// no lease (lease_s <= 0) is the single server's own pool, whose jobs are
+// recovered at its start-up (recover). A job handed to an outside
+// scheduler (Slurm) carries that scheduler's reference (dispatch_ref)
+// while it is tracked.
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -41,6 +49,8 @@ struct JobRecord {
   int attempts = 0;  // times a worker started it
   std::string message;
   std::string created, started, finished, updated;  // ISO 8601 UTC; "" if not yet
+  std::string worker;                               // who claimed it last ("" if nobody)
+  std::string dispatch_ref;  // an outside scheduler's reference while tracked ("" if none)
 };
 
 struct NewJob {
@@ -92,6 +102,13 @@ struct ProgressUpdate {
   int progress = 0;
 };
 
+// A claimant: "host:pid" of a worker process, or the server's own pool.
+// lease_s > 0: its claims expire unless renewed within that many seconds.
+struct Holder {
+  std::string worker = "local";
+  double lease_s = 0.0;
+};
+
 struct Recovery {
   std::vector<std::string> requeued;  // interrupted runs that will start again
   std::vector<std::string> failed;    // interrupted max_attempts times
@@ -113,27 +130,80 @@ class JobStore {
   virtual std::optional<StudyRecord> study(const std::string& id) = 0;
   virtual std::map<std::string, std::int64_t> count_by_status() = 0;
 
-  // Oldest accepted job -> running, attempts + 1; nullopt if none is queued.
-  virtual std::optional<JobRecord> claim() = 0;
+  // Oldest accepted job (not handed to a scheduler) -> running, attempts + 1,
+  // held by `holder`; nullopt if none is queued. Two claimants never get the
+  // same job.
+  virtual std::optional<JobRecord> claim(const Holder& holder) = 0;
+  std::optional<JobRecord> claim() { return claim(Holder{}); }
+  // Heartbeat: extends the lease of those `ids` that are still running and
+  // held by `holder`; returns the others (dismissed, or reclaimed after the
+  // lease ran out): their runs should stop.
+  virtual std::vector<std::string> renew(const Holder& holder,
+                                         const std::vector<std::string>& ids) = 0;
+  // Running jobs whose lease ran out go back to the queue, or fail once they
+  // were started max_attempts times.
+  virtual Recovery reclaim_expired(int max_attempts) = 0;
   // Progress of running jobs, in one transaction. Returns the ids that are
   // no longer running (dismissed meanwhile): their runs should stop.
   virtual std::vector<std::string> save_progress(const std::vector<ProgressUpdate>& batch) = 0;
-  // running -> successful | failed; false if the job was not running.
+  // running -> successful | failed; false if the job was not running (or,
+  // with a non-empty `worker`, is no longer held by that worker).
   virtual bool finish(const std::string& id, const std::string& status, const std::string& message,
-                      const ProgressUpdate& last) = 0;
+                      const ProgressUpdate& last, const std::string& worker) = 0;
+  bool finish(const std::string& id, const std::string& status, const std::string& message,
+              const ProgressUpdate& last) {
+    return finish(id, status, message, last, "");
+  }
   // Records where a run dismissed while running stopped; false if the job is not dismissed.
   virtual bool close_dismissed(const std::string& id, const std::string& message,
                                const ProgressUpdate& last) = 0;
   // running -> accepted without counting the attempt (the server is stopping).
-  virtual bool requeue(const std::string& id, const std::string& message) = 0;
+  virtual bool requeue(const std::string& id, const std::string& message,
+                       const std::string& worker) = 0;
+  bool requeue(const std::string& id, const std::string& message) {
+    return requeue(id, message, "");
+  }
   // Any state -> dismissed. Returns the record before the change, or nullopt if unknown.
   virtual std::optional<JobRecord> dismiss(const std::string& id) = 0;
-  // At start-up: jobs left running by a crash go back to the queue, or fail
-  // once they were started max_attempts times.
+  // At start-up: jobs the server's own pool left running (no lease, no
+  // scheduler) go back to the queue, or fail once they were started
+  // max_attempts times.
   virtual Recovery recover(int max_attempts) = 0;
+
+  // An outside scheduler (Slurm). The oldest queued job not yet handed over
+  // gets `ref` (a placeholder until the scheduler answers); its status stays
+  // accepted. nullopt if none.
+  virtual std::optional<JobRecord> claim_for_dispatch(const std::string& ref) = 0;
+  // Every job that carries a dispatch reference.
+  virtual std::vector<JobRecord> dispatched() = 0;
+  // Replaces the reference and the message of a dispatched job, if it still
+  // has status `status`.
+  virtual bool set_dispatch(const std::string& id, const std::string& status,
+                            const std::string& ref, const std::string& message) = 0;
+  // Handing over failed: the job is queued again, without a reference.
+  virtual bool release_dispatch(const std::string& id, const std::string& message) = 0;
+  // The scheduler started it: accepted -> running, attempts + 1.
+  virtual bool start_dispatched(const std::string& id, const std::string& worker,
+                                const std::string& message) = 0;
+  // Drops the reference of a job that is finished or dismissed (after the
+  // scheduler was told to cancel it).
+  virtual void forget_dispatch(const std::string& id) = 0;
+
+  // Jobs that are queued or running, or were changed within the last
+  // `seconds` (by the store's clock): what a server that does not run the
+  // jobs itself watches to publish their events.
+  virtual std::vector<JobRecord> active_or_changed_within(double seconds) = 0;
 };
 
 // SQLite in WAL mode at `file` (created with its schema, migrated if older).
 std::unique_ptr<JobStore> open_sqlite_job_store(const std::filesystem::path& file);
+// PostgreSQL at a libpq connection URI (postgresql://user@host:port/db...),
+// its schema created or migrated under an advisory lock. Throws if this
+// build has no PostgreSQL client library or the server cannot be reached.
+std::unique_ptr<JobStore> open_postgres_job_store(const std::string& uri);
+bool is_postgres_uri(std::string_view s);
+// A store named on the command line: a postgresql:// URI, or a SQLite file
+// (sqlite:PATH or a plain path).
+std::unique_ptr<JobStore> open_job_store(const std::string& location);
 
 }  // namespace gearsph::server

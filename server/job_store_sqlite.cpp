@@ -2,7 +2,9 @@
 // busy timeout (writers wait for each other), a schema version table with
 // ordered migrations, and CHECK constraints so no row can hold a state the
 // life cycle does not know.
+#include <algorithm>
 #include <array>
+#include <cstdio>
 #include <string>
 
 #include "server/job_store.hpp"
@@ -23,9 +25,11 @@ namespace {
 
 // ISO 8601 UTC with milliseconds, computed by SQLite so every writer agrees.
 #define GEARSPH_NOW "strftime('%Y-%m-%dT%H:%M:%fZ','now')"
+// Seconds since 1970 (leases), also from SQLite's clock.
+#define GEARSPH_EPOCH "((julianday('now') - 2440587.5) * 86400.0)"
 
 // Migration i brings the schema from version i to i + 1. Append, never edit.
-const std::array<const char*, 1> kMigrations = {
+const std::array<const char*, 2> kMigrations = {
     R"sql(
 CREATE TABLE studies (
   seq       INTEGER PRIMARY KEY AUTOINCREMENT,
@@ -72,12 +76,19 @@ CREATE TABLE idempotency_keys (
   PRIMARY KEY (scope, key)
 );
 )sql",
+    // 2: claims with leases (worker processes), outside schedulers (Slurm).
+    R"sql(
+ALTER TABLE jobs ADD COLUMN worker TEXT;
+ALTER TABLE jobs ADD COLUMN lease_until REAL;
+ALTER TABLE jobs ADD COLUMN dispatch_ref TEXT;
+CREATE INDEX jobs_by_dispatch ON jobs(dispatch_ref) WHERE dispatch_ref IS NOT NULL;
+)sql",
 };
 
 const char* const kJobColumns =
     "id, status, name, job_json, study_id, study_index, parameters_json, particles, steps, "
     "end_s, step, simulated_s, wall_s, eta_s, progress, attempts, message, created, started, "
-    "finished, updated";
+    "finished, updated, worker, dispatch_ref";
 
 JobRecord read_job(const sqlite::Statement& s) {
   JobRecord r;
@@ -102,6 +113,8 @@ JobRecord read_job(const sqlite::Statement& s) {
   r.started = s.text(18);
   r.finished = s.text(19);
   r.updated = s.text(20);
+  r.worker = s.text(21);
+  r.dispatch_ref = s.text(22);
   return r;
 }
 
@@ -192,7 +205,7 @@ class SqliteJobStore : public JobStore {
     return counts;
   }
 
-  std::optional<JobRecord> claim() override {
+  std::optional<JobRecord> claim(const Holder& holder) override {
     auto db = pool_.acquire();
     // One statement: two workers can never claim the same job.
     auto s = db->prepare(
@@ -200,14 +213,64 @@ class SqliteJobStore : public JobStore {
                     "message = 'running' || CASE WHEN attempts > 0 THEN ' (attempt ' || "
                     "(attempts + 1) || ')' ELSE '' END, "
                     "started = " GEARSPH_NOW ", updated = " GEARSPH_NOW ", finished = NULL, "
-                    "step = 0, simulated_s = 0, wall_s = 0, eta_s = 0, progress = 0 "
+                    "step = 0, simulated_s = 0, wall_s = 0, eta_s = 0, progress = 0, "
+                    "worker = ?, lease_until = CASE WHEN ? > 0 THEN " GEARSPH_EPOCH
+                    " + ? ELSE NULL END "
                     "WHERE seq = (SELECT seq FROM jobs WHERE status = 'accepted' "
-                    "ORDER BY seq LIMIT 1) RETURNING ") +
+                    "AND dispatch_ref IS NULL ORDER BY seq LIMIT 1) RETURNING ") +
         kJobColumns);
+    s.bind(1, holder.worker).bind(2, holder.lease_s).bind(3, holder.lease_s);
     if (!s.step()) return std::nullopt;
     JobRecord r = read_job(s);
     s.run();
     return r;
+  }
+
+  std::vector<std::string> renew(const Holder& holder,
+                                 const std::vector<std::string>& ids) override {
+    std::vector<std::string> lost;
+    if (ids.empty()) return lost;
+    auto db = pool_.acquire();
+    sqlite::Transaction tx(*db);
+    for (const std::string& id : ids) {
+      db->prepare("UPDATE jobs SET lease_until = " GEARSPH_EPOCH
+                  " + ? WHERE id = ? AND status = 'running' AND worker = ?")
+          .bind(1, holder.lease_s)
+          .bind(2, id)
+          .bind(3, holder.worker)
+          .run();
+      if (db->changes() == 0) lost.push_back(id);
+    }
+    tx.commit();
+    return lost;
+  }
+
+  Recovery reclaim_expired(int max_attempts) override {
+    Recovery out;
+    auto db = pool_.acquire();
+    sqlite::Transaction tx(*db);
+    {
+      auto s = db->prepare(
+          "UPDATE jobs SET status = 'failed', eta_s = 0, lease_until = NULL, message = "
+          "'its worker ' || worker || ' stopped renewing its lease during attempt ' || attempts "
+          "|| '; not started again after ' || attempts || CASE WHEN attempts = 1 THEN "
+          "' attempt' ELSE ' attempts' END, finished = " GEARSPH_NOW ", updated = " GEARSPH_NOW
+          " WHERE status = 'running' AND lease_until < " GEARSPH_EPOCH
+          " AND attempts >= ? RETURNING id");
+      s.bind(1, max_attempts);
+      while (s.step()) out.failed.push_back(s.text(0));
+    }
+    {
+      auto s = db->prepare(
+          "UPDATE jobs SET status = 'accepted', lease_until = NULL, message = 're-queued: its "
+          "worker ' || worker || ' stopped renewing its lease during attempt ' || attempts || '; "
+          "the job starts again from the beginning', started = NULL, step = 0, simulated_s = 0, "
+          "wall_s = 0, eta_s = 0, progress = 0, updated = " GEARSPH_NOW
+          " WHERE status = 'running' AND lease_until < " GEARSPH_EPOCH " RETURNING id");
+      while (s.step()) out.requeued.push_back(s.text(0));
+    }
+    tx.commit();
+    return out;
   }
 
   std::vector<std::string> save_progress(const std::vector<ProgressUpdate>& batch) override {
@@ -233,12 +296,13 @@ class SqliteJobStore : public JobStore {
   }
 
   bool finish(const std::string& id, const std::string& status, const std::string& message,
-              const ProgressUpdate& last) override {
+              const ProgressUpdate& last, const std::string& worker) override {
     auto db = pool_.acquire();
     db->prepare(
           "UPDATE jobs SET status = ?, message = ?, step = ?, simulated_s = ?, wall_s = ?, "
-          "eta_s = 0, progress = ?, finished = " GEARSPH_NOW ", updated = " GEARSPH_NOW
-          " WHERE id = ? AND status = 'running'")
+          "eta_s = 0, progress = ?, lease_until = NULL, dispatch_ref = NULL, "
+          "finished = " GEARSPH_NOW ", updated = " GEARSPH_NOW
+          " WHERE id = ? AND status = 'running' AND (? = '' OR worker = ?)")
         .bind(1, status)
         .bind(2, message)
         .bind(3, last.step)
@@ -246,6 +310,8 @@ class SqliteJobStore : public JobStore {
         .bind(5, last.wall_s)
         .bind(6, last.progress)
         .bind(7, id)
+        .bind(8, worker)
+        .bind(9, worker)
         .run();
     return db->changes() > 0;
   }
@@ -255,7 +321,7 @@ class SqliteJobStore : public JobStore {
     auto db = pool_.acquire();
     db->prepare(
           "UPDATE jobs SET message = ?, step = ?, simulated_s = ?, wall_s = ?, eta_s = 0, "
-          "progress = ?, finished = " GEARSPH_NOW ", updated = " GEARSPH_NOW
+          "progress = ?, lease_until = NULL, finished = " GEARSPH_NOW ", updated = " GEARSPH_NOW
           " WHERE id = ? AND status = 'dismissed'")
         .bind(1, message)
         .bind(2, last.step)
@@ -267,14 +333,18 @@ class SqliteJobStore : public JobStore {
     return db->changes() > 0;
   }
 
-  bool requeue(const std::string& id, const std::string& message) override {
+  bool requeue(const std::string& id, const std::string& message,
+               const std::string& worker) override {
     auto db = pool_.acquire();
     db->prepare(
           "UPDATE jobs SET status = 'accepted', attempts = MAX(attempts - 1, 0), "
           "message = ?, started = NULL, step = 0, simulated_s = 0, wall_s = 0, eta_s = 0, "
-          "progress = 0, updated = " GEARSPH_NOW " WHERE id = ? AND status = 'running'")
+          "progress = 0, lease_until = NULL, updated = " GEARSPH_NOW
+          " WHERE id = ? AND status = 'running' AND (? = '' OR worker = ?)")
         .bind(1, message)
         .bind(2, id)
+        .bind(3, worker)
+        .bind(4, worker)
         .run();
     return db->changes() > 0;
   }
@@ -315,7 +385,8 @@ class SqliteJobStore : public JobStore {
           "CASE WHEN attempts = 1 THEN ' time' ELSE ' times' END || ' (the server stopped while "
           "it ran); not started again after ' || attempts || CASE WHEN attempts = 1 THEN "
           "' attempt' ELSE ' attempts' END, finished = " GEARSPH_NOW ", updated = " GEARSPH_NOW
-          " WHERE status = 'running' AND attempts >= ? RETURNING id");
+          " WHERE status = 'running' AND lease_until IS NULL AND dispatch_ref IS NULL "
+          "AND attempts >= ? RETURNING id");
       s.bind(1, max_attempts);
       while (s.step()) out.failed.push_back(s.text(0));
     }
@@ -324,10 +395,95 @@ class SqliteJobStore : public JobStore {
           "UPDATE jobs SET status = 'accepted', message = 're-queued: the server stopped while "
           "attempt ' || attempts || ' ran; the job starts again from the beginning', "
           "started = NULL, step = 0, simulated_s = 0, wall_s = 0, eta_s = 0, progress = 0, "
-          "updated = " GEARSPH_NOW " WHERE status = 'running' RETURNING id");
+          "updated = " GEARSPH_NOW
+          " WHERE status = 'running' AND lease_until IS NULL AND dispatch_ref IS NULL "
+          "RETURNING id");
       while (s.step()) out.requeued.push_back(s.text(0));
     }
     tx.commit();
+    return out;
+  }
+
+  std::optional<JobRecord> claim_for_dispatch(const std::string& ref) override {
+    auto db = pool_.acquire();
+    auto s = db->prepare(std::string("UPDATE jobs SET dispatch_ref = ?, updated = " GEARSPH_NOW
+                                     " WHERE seq = (SELECT seq FROM jobs WHERE status = "
+                                     "'accepted' AND dispatch_ref IS NULL ORDER BY seq LIMIT 1) "
+                                     "RETURNING ") +
+                         kJobColumns);
+    s.bind(1, ref);
+    if (!s.step()) return std::nullopt;
+    JobRecord r = read_job(s);
+    s.run();
+    return r;
+  }
+
+  std::vector<JobRecord> dispatched() override {
+    auto db = pool_.acquire();
+    auto s = db->prepare(std::string("SELECT ") + kJobColumns +
+                         " FROM jobs WHERE dispatch_ref IS NOT NULL ORDER BY seq");
+    std::vector<JobRecord> out;
+    while (s.step()) out.push_back(read_job(s));
+    return out;
+  }
+
+  bool set_dispatch(const std::string& id, const std::string& status, const std::string& ref,
+                    const std::string& message) override {
+    auto db = pool_.acquire();
+    db->prepare("UPDATE jobs SET dispatch_ref = ?, message = ?, updated = " GEARSPH_NOW
+                " WHERE id = ? AND status = ? AND dispatch_ref IS NOT NULL")
+        .bind(1, ref)
+        .bind(2, message)
+        .bind(3, id)
+        .bind(4, status)
+        .run();
+    return db->changes() > 0;
+  }
+
+  bool release_dispatch(const std::string& id, const std::string& message) override {
+    auto db = pool_.acquire();
+    db->prepare("UPDATE jobs SET dispatch_ref = NULL, message = ?, updated = " GEARSPH_NOW
+                " WHERE id = ? AND status = 'accepted'")
+        .bind(1, message)
+        .bind(2, id)
+        .run();
+    return db->changes() > 0;
+  }
+
+  bool start_dispatched(const std::string& id, const std::string& worker,
+                        const std::string& message) override {
+    auto db = pool_.acquire();
+    db->prepare(
+          "UPDATE jobs SET status = 'running', attempts = attempts + 1, worker = ?, "
+          "message = ?, started = " GEARSPH_NOW ", updated = " GEARSPH_NOW
+          ", finished = NULL, step = 0, simulated_s = 0, wall_s = 0, eta_s = 0, "
+          "progress = 0 WHERE id = ? AND status = 'accepted' AND dispatch_ref IS NOT NULL")
+        .bind(1, worker)
+        .bind(2, message)
+        .bind(3, id)
+        .run();
+    return db->changes() > 0;
+  }
+
+  void forget_dispatch(const std::string& id) override {
+    auto db = pool_.acquire();
+    db->prepare(
+          "UPDATE jobs SET dispatch_ref = NULL WHERE id = ? AND status IN "
+          "('successful', 'failed', 'dismissed')")
+        .bind(1, id)
+        .run();
+  }
+
+  std::vector<JobRecord> active_or_changed_within(double seconds) override {
+    auto db = pool_.acquire();
+    auto s = db->prepare(std::string("SELECT ") + kJobColumns +
+                         " FROM jobs WHERE status IN ('accepted', 'running') OR updated >= "
+                         "strftime('%Y-%m-%dT%H:%M:%fZ', 'now', ?) ORDER BY seq");
+    char modifier[64];
+    std::snprintf(modifier, sizeof modifier, "-%.3f seconds", std::max(0.0, seconds));
+    s.bind(1, std::string_view(modifier));
+    std::vector<JobRecord> out;
+    while (s.step()) out.push_back(read_job(s));
     return out;
   }
 
@@ -404,11 +560,25 @@ class SqliteJobStore : public JobStore {
 };
 
 #undef GEARSPH_NOW
+#undef GEARSPH_EPOCH
 
 }  // namespace
 
 std::unique_ptr<JobStore> open_sqlite_job_store(const std::filesystem::path& file) {
   return std::make_unique<SqliteJobStore>(file);
+}
+
+bool is_postgres_uri(std::string_view s) {
+  return s.rfind("postgresql://", 0) == 0 || s.rfind("postgres://", 0) == 0;
+}
+
+std::unique_ptr<JobStore> open_job_store(const std::string& location) {
+  if (is_postgres_uri(location)) return open_postgres_job_store(location);
+  const std::string_view prefix = "sqlite:";
+  if (location.rfind(prefix, 0) == 0) {
+    return open_sqlite_job_store(location.substr(prefix.size()));
+  }
+  return open_sqlite_job_store(location);
 }
 
 }  // namespace gearsph::server

@@ -4,6 +4,7 @@
 
 #include "server/problem.hpp"
 #include "server/routes.hpp"
+#include "server/routes_preview.hpp"
 #include "server/static_files.hpp"
 
 namespace gearsph::server {
@@ -32,6 +33,7 @@ const std::vector<Route>& route_table() {
       {verb::get, "/events", routes::all_events},
       {verb::post, "/studies", routes::create_study, slow},
       {verb::get, "/studies/{id}", routes::study, slow},  // reads every job's summary
+      {verb::post, "/preview", routes::preview, slow},    // builds the scene
   };
   return table;
 }

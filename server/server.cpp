@@ -10,6 +10,8 @@
 
 #include <boost/asio/ip/address.hpp>
 
+#include "server/slurm_dispatch.hpp"
+
 namespace gearsph::server {
 
 namespace net = boost::asio;
@@ -30,12 +32,35 @@ int lock_data_dir(const std::filesystem::path& dir) {
 
 WorkerPoolOptions worker_options(const ServerConfig& c) {
   WorkerPoolOptions o;
-  o.workers = c.workers;
+  o.workers = c.local_workers ? c.workers : 0;
   o.threads_per_job = c.threads_per_job;
-  o.jobs_dir = c.data_dir / "jobs";
+  o.jobs_dir = results_dir_of(c);
   o.progress_interval = c.progress_interval;
   o.flush_interval = c.flush_interval;
+  o.max_attempts = c.max_attempts;
+  if (shared_store(c)) {
+    // Other processes claim from the same store: claims need leases, and
+    // the flusher renews them well within one.
+    o.holder = {process_name(), c.lease_s};
+    o.flush_interval = std::min(
+        o.flush_interval, std::chrono::milliseconds(static_cast<long long>(c.lease_s * 1000 / 3)));
+    o.poll_interval = std::chrono::milliseconds(500);
+  }
   return o;
+}
+
+std::unique_ptr<Dispatcher> make_dispatcher(const ServerConfig& c, JobStore& store, EventHub& hub) {
+  if (c.dispatch != "slurm") {
+    return std::make_unique<WorkerPool>(store, hub, worker_options(c));
+  }
+  SlurmOptions o;
+  o.jobs_dir = std::filesystem::absolute(results_dir_of(c));
+  o.gearsph = c.gearsph_executable;
+  if (o.gearsph.empty()) o.gearsph = std::filesystem::read_symlink("/proc/self/exe");
+  o.cpus_per_job = c.threads_per_job;
+  o.sbatch_args = c.sbatch_args;
+  o.name = process_name();
+  return std::make_unique<SlurmDispatcher>(store, o);
 }
 
 }  // namespace
@@ -44,9 +69,15 @@ Server::Server(ServerConfig config)
     : config_(std::move(config)),
       handler_pool_(static_cast<std::size_t>(std::max(1, config_.handler_threads))),
       signals_(ioc_, SIGINT, SIGTERM) {
-  std::filesystem::create_directories(config_.data_dir / "jobs");
-  lock_fd_ = lock_data_dir(config_.data_dir);
-  store_ = open_sqlite_job_store(config_.data_dir / "gearsph.db");
+  std::filesystem::create_directories(results_dir_of(config_));
+  if (shared_store(config_)) {
+    // Many API nodes may share the store; the data directory is theirs alone.
+    std::filesystem::create_directories(config_.data_dir);
+    store_ = open_job_store(config_.store);
+  } else {
+    lock_fd_ = lock_data_dir(config_.data_dir);
+    store_ = open_sqlite_job_store(config_.data_dir / "gearsph.db");
+  }
   const Recovery r = store_->recover(config_.max_attempts);
   for (const std::string& id : r.requeued) {
     std::fprintf(stderr, "gearsph serve: job %s was interrupted; it is queued again\n", id.c_str());
@@ -55,7 +86,13 @@ Server::Server(ServerConfig config)
     std::fprintf(stderr, "gearsph serve: job %s was interrupted %d times; it failed\n", id.c_str(),
                  config_.max_attempts);
   }
-  workers_ = std::make_unique<WorkerPool>(*store_, hub_, worker_options(config_));
+  workers_ = make_dispatcher(config_, *store_, hub_);
+  if (shared_store(config_) || !config_.local_workers || config_.dispatch == "slurm") {
+    StoreWatcherOptions wo;
+    wo.reclaim = shared_store(config_);
+    wo.max_attempts = config_.max_attempts;
+    watcher_ = std::make_unique<StoreWatcher>(*store_, hub_, *workers_, wo);
+  }
   services_ = std::make_unique<Services>(config_, *store_, *workers_, hub_);
   router_ = std::make_unique<Router>(*services_);
   boost::system::error_code ec;
@@ -90,6 +127,7 @@ void Server::run() {
     stop();
   });
   workers_->start();
+  if (watcher_) watcher_->start();
   listener_->run();
   std::vector<std::thread> io;
   for (int i = 0; i < std::max(1, config_.io_threads); ++i) io.emplace_back([this] { ioc_.run(); });
@@ -102,6 +140,7 @@ void Server::run() {
   listener_->stop();
   // Running jobs stop at their next check and go back to the queue.
   workers_->stop();
+  if (watcher_) watcher_->stop();
   hub_.close();
   const auto deadline = std::chrono::steady_clock::now() + config_.shutdown_grace;
   while (services_->connections > 0 && std::chrono::steady_clock::now() < deadline) {

@@ -16,6 +16,7 @@
 #include "server/listener.hpp"
 #include "server/router.hpp"
 #include "server/services.hpp"
+#include "server/store_watcher.hpp"
 #include "server/worker_pool.hpp"
 
 namespace gearsph::server {
@@ -41,7 +42,8 @@ class Server {
   int lock_fd_ = -1;
   std::unique_ptr<JobStore> store_;
   EventHub hub_;
-  std::unique_ptr<WorkerPool> workers_;
+  std::unique_ptr<Dispatcher> workers_;
+  std::unique_ptr<StoreWatcher> watcher_;  // jobs run by other processes
   std::unique_ptr<Services> services_;
   std::unique_ptr<Router> router_;
   boost::asio::thread_pool handler_pool_;

@@ -9,20 +9,20 @@
 #include <nlohmann/json.hpp>
 
 #include "server/config.hpp"
+#include "server/dispatcher.hpp"
 #include "server/documents.hpp"
 #include "server/event_hub.hpp"
 #include "server/job_store.hpp"
-#include "server/worker_pool.hpp"
 
 namespace gearsph::server {
 
 struct Services {
-  Services(const ServerConfig& c, JobStore& s, WorkerPool& w, EventHub& h)
-      : config(c), store(s), workers(w), hub(h), jobs_dir(c.data_dir / "jobs") {}
+  Services(const ServerConfig& c, JobStore& s, Dispatcher& w, EventHub& h)
+      : config(c), store(s), workers(w), hub(h), jobs_dir(results_dir_of(c)) {}
 
   const ServerConfig& config;
   JobStore& store;
-  WorkerPool& workers;
+  Dispatcher& workers;  // the worker pool, or the Slurm dispatcher
   EventHub& hub;
   std::filesystem::path jobs_dir;
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();

@@ -29,7 +29,8 @@ nlohmann::json progress_document(const std::string& id, const Progress& p) {
 struct WorkerPool::RunningJob {
   std::string id;
   std::atomic<bool> dismissed{false};
-  std::mutex mutex;  // guards the fields below
+  std::atomic<bool> lost{false};  // the store no longer has it running here
+  std::mutex mutex;               // guards the fields below
   Progress progress;
   bool dirty = false;
   Clock::time_point last_event{};
@@ -55,7 +56,9 @@ class WorkerPool::Observer : public RunObserver {
     if (publish) pool_.hub_.publish(job_.id, "progress", progress_document(job_.id, p).dump());
   }
 
-  bool cancelled() override { return job_.dismissed.load() || pool_.stopping_.load(); }
+  bool cancelled() override {
+    return job_.dismissed.load() || job_.lost.load() || pool_.stopping_.load();
+  }
 
  private:
   WorkerPool& pool_;
@@ -133,22 +136,25 @@ void WorkerPool::work() {
     }
     std::optional<JobRecord> job;
     try {
-      job = store_.claim();
+      if (options_.holder.lease_s > 0) reclaim();
+      job = store_.claim(options_.holder);
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "gearsph serve: claiming a job failed: %s\n", e.what());
+      std::fprintf(stderr, "%s: claiming a job failed: %s\n", options_.log_name.c_str(), e.what());
     }
     if (job) {
       if (stopping_) {
-        store_.requeue(job->id, "re-queued: the server was stopping when this job was claimed");
+        store_.requeue(job->id, "re-queued: the server was stopping when this job was claimed",
+                       options_.holder.worker);
         return;
       }
       try {
         run(*job);
       } catch (const std::exception& e) {
         // The store failed while recording the outcome; the job stays
-        // running in the store and is re-queued at the next start.
-        std::fprintf(stderr, "gearsph serve: job %s: recording its outcome failed: %s\n",
-                     job->id.c_str(), e.what());
+        // running in the store and is re-queued at the next start (or when
+        // its lease runs out).
+        std::fprintf(stderr, "%s: job %s: recording its outcome failed: %s\n",
+                     options_.log_name.c_str(), job->id.c_str(), e.what());
       }
       continue;
     }
@@ -176,8 +182,8 @@ void WorkerPool::run(const JobRecord& job) {
       pool.running_.erase(id);
     }
   } unregister{*this, job.id};
-  std::fprintf(stderr, "gearsph serve: job %s running (%s, attempt %d)\n", job.id.c_str(),
-               job.name.c_str(), job.attempts);
+  std::fprintf(stderr, "%s: job %s running (%s, attempt %d)\n", options_.log_name.c_str(),
+               job.id.c_str(), job.name.c_str(), job.attempts);
   publish_status(job.id);
 
   const std::filesystem::path dir = options_.jobs_dir / job.id;
@@ -219,20 +225,45 @@ void WorkerPool::run(const JobRecord& job) {
   }
 
   const std::string where = "step " + std::to_string(last.step) + " of " + std::to_string(steps);
-  if (outcome == "cancelled" && !rj->dismissed && stopping_) {
-    store_.requeue(job.id, "re-queued: the server was stopped while this job ran (at " + where +
-                               "); it starts again from the beginning when the server is back");
-  } else if (outcome == "cancelled") {
-    store_.close_dismissed(job.id, "dismissed while running; the run stopped at " + where, last);
-  } else if (!store_.finish(job.id, outcome, message, last)) {
-    // Dismissed while its last steps ran.
-    store_.close_dismissed(job.id,
-                           "dismissed while running; the run had just " +
-                               std::string(outcome == "successful" ? "completed" : "failed"),
-                           last);
+  const std::string& worker = options_.holder.worker;
+  auto record_outcome = [&] {
+    if (outcome == "cancelled" && !rj->dismissed && !rj->lost && stopping_) {
+      store_.requeue(job.id,
+                     "re-queued: the server was stopped while this job ran (at " + where +
+                         "); it starts again from the beginning when the server is back",
+                     worker);
+    } else if (outcome == "cancelled") {
+      if (!store_.close_dismissed(job.id, "dismissed while running; the run stopped at " + where,
+                                  last) &&
+          rj->lost) {
+        std::fprintf(stderr, "%s: job %s stopped at %s: its claim was lost (lease ran out)\n",
+                     options_.log_name.c_str(), job.id.c_str(), where.c_str());
+      }
+    } else if (!store_.finish(job.id, outcome, message, last, worker)) {
+      // Dismissed while its last steps ran.
+      store_.close_dismissed(job.id,
+                             "dismissed while running; the run had just " +
+                                 std::string(outcome == "successful" ? "completed" : "failed"),
+                             last);
+    }
+  };
+  // A shared store may be restarting: keep trying for as long as the lease
+  // would hold, rather than lose a finished run.
+  const auto give_up = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                          std::chrono::duration<double>(options_.holder.lease_s));
+  for (;;) {
+    try {
+      record_outcome();
+      break;
+    } catch (const std::exception& e) {
+      if (options_.holder.lease_s <= 0 || Clock::now() >= give_up) throw;
+      std::fprintf(stderr, "%s: job %s: recording its outcome failed (%s); trying again\n",
+                   options_.log_name.c_str(), job.id.c_str(), e.what());
+      std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    }
   }
   const auto record = store_.job(job.id);
-  std::fprintf(stderr, "gearsph serve: job %s %s: %s\n", job.id.c_str(),
+  std::fprintf(stderr, "%s: job %s %s: %s\n", options_.log_name.c_str(), job.id.c_str(),
                record ? record->status.c_str() : "?", record ? record->message.c_str() : "");
   publish_status(job.id);
 }
@@ -262,7 +293,55 @@ void WorkerPool::flush() {
     // another process sharing it): stop their runs.
     for (const std::string& id : store_.save_progress(batch)) cancel(id);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "gearsph serve: storing progress failed: %s\n", e.what());
+    std::fprintf(stderr, "%s: storing progress failed: %s\n", options_.log_name.c_str(), e.what());
+  }
+}
+
+void WorkerPool::heartbeat() {
+  if (options_.holder.lease_s <= 0) return;
+  std::vector<std::string> ids;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& entry : running_) ids.push_back(entry.first);
+  }
+  const auto now = Clock::now();
+  try {
+    const std::vector<std::string> lost = store_.renew(options_.holder, ids);
+    last_renewed_ = now;
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const std::string& id : lost) {
+      const auto it = running_.find(id);
+      if (it != running_.end()) it->second->lost = true;
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: renewing the leases failed: %s\n", options_.log_name.c_str(),
+                 e.what());
+    // Unrenewed for a whole lease, the claims may already belong to other
+    // workers: stop rather than run a job twice at the same time.
+    const auto silent = std::chrono::duration<double>(now - last_renewed_).count();
+    if (silent >= options_.holder.lease_s) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (auto& entry : running_) entry.second->lost = true;
+    }
+  }
+}
+
+void WorkerPool::reclaim() {
+  {
+    // Once per half lease and process is plenty.
+    std::lock_guard<std::mutex> lock(reclaim_mutex_);
+    const auto now = Clock::now();
+    if (now - last_reclaim_ < std::chrono::duration<double>(options_.holder.lease_s / 2)) return;
+    last_reclaim_ = now;
+  }
+  const Recovery r = store_.reclaim_expired(options_.max_attempts);
+  for (const std::string& id : r.requeued) {
+    std::fprintf(stderr, "%s: job %s: its worker stopped renewing its lease; it is queued again\n",
+                 options_.log_name.c_str(), id.c_str());
+  }
+  for (const std::string& id : r.failed) {
+    std::fprintf(stderr, "%s: job %s: its worker stopped renewing its lease %d times; it failed\n",
+                 options_.log_name.c_str(), id.c_str(), options_.max_attempts);
   }
 }
 
@@ -275,6 +354,7 @@ void WorkerPool::flusher() {
       stop = flusher_stop_;
     }
     flush();
+    heartbeat();
     if (stop) return;
   }
 }

@@ -5,6 +5,12 @@
 // goes to memory at once (status requests read it there), to the event hub
 // throttled, and to the store in batches by a flusher thread: nothing the
 // HTTP side does ever waits for a simulation or its disk writes.
+//
+// With a lease (a shared store, many worker processes) the flusher is also
+// the heartbeat: it renews the claims of the jobs running here, stops a run
+// whose claim was lost (dismissed elsewhere, or reclaimed because the
+// heartbeat could not reach the store for a whole lease), and the idle
+// workers put jobs whose lease ran out back in the queue.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -17,6 +23,7 @@
 #include <thread>
 #include <vector>
 
+#include "server/dispatcher.hpp"
 #include "server/event_hub.hpp"
 #include "server/job_store.hpp"
 #include "solver/run/runner.hpp"
@@ -30,28 +37,31 @@ struct WorkerPoolOptions {
   std::chrono::milliseconds progress_interval{250};
   std::chrono::milliseconds flush_interval{1000};
   std::chrono::milliseconds poll_interval{2000};  // look for jobs queued by other processes
+  Holder holder;                           // who claims; lease_s > 0: claims expire unless renewed
+  int max_attempts = 3;                    // a job whose lease ran out this often fails
+  std::string log_name = "gearsph serve";  // prefix of the log lines on stderr
 };
 
-class WorkerPool {
+class WorkerPool : public Dispatcher {
  public:
   WorkerPool(JobStore& store, EventHub& hub, WorkerPoolOptions options);
   ~WorkerPool();
   WorkerPool(const WorkerPool&) = delete;
   WorkerPool& operator=(const WorkerPool&) = delete;
 
-  void start();
+  void start() override;
   // A job was queued: wake an idle worker.
-  void notify();
+  void notify() override;
   // Graceful stop: running jobs are cancelled at their next check and put
   // back in the queue (their message says so); returns once every worker
   // has finished and the last progress is stored.
-  void stop();
+  void stop() override;
 
   // The newest progress of a job running here.
-  std::optional<Progress> live(const std::string& id) const;
+  std::optional<Progress> live(const std::string& id) const override;
   // Stops a job running here at its next check (it was dismissed); false if not running here.
-  bool cancel(const std::string& id);
-  int running() const;
+  bool cancel(const std::string& id) override;
+  int running() const override;
   const WorkerPoolOptions& options() const { return options_; }
 
  private:
@@ -61,6 +71,8 @@ class WorkerPool {
   void work();
   void run(const JobRecord& job);
   void flush();
+  void heartbeat();
+  void reclaim();
   void flusher();
   void publish_status(const std::string& id);
 
@@ -78,6 +90,9 @@ class WorkerPool {
   std::mutex flush_mutex_;
   std::condition_variable flush_wake_;
   bool flusher_stop_ = false;
+  std::chrono::steady_clock::time_point last_renewed_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point last_reclaim_{};
+  std::mutex reclaim_mutex_;
 };
 
 }  // namespace gearsph::server

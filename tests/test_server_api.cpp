@@ -479,6 +479,8 @@ TEST(ServerJobs, ResultsNotReadyAndFailedJobs) {
   EXPECT_NE(r.json().at("detail").get<std::string>().find("diverged"), std::string::npos);
 }
 
+#ifndef GEARSPH_WITH_RENDER
+// With the renderer built in, test_server_images.cpp checks the images.
 TEST(ServerJobs, ImagesWithoutARendererAnswer501) {
   ServerProcess server({"--threads-per-job", "1"});
   auto c = server.client();
@@ -491,6 +493,7 @@ TEST(ServerJobs, ImagesWithoutARendererAnswer501) {
   EXPECT_EQ(c.get("/jobs/" + id + "/images/von_mises.png?zoom=1,1,0,0").status, 400u);
   EXPECT_EQ(c.get("/jobs/" + id + "/images/a..b.png").status, 404u);
 }
+#endif
 
 TEST(ServerStatic, DashboardFilesFromTheWebRoot) {
   TempDir web;

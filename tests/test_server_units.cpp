@@ -114,7 +114,8 @@ TEST(ServerJobStore, RecoverRequeuesThenFailsAfterMaxAttempts) {
     EXPECT_NE(store->job(j.id)->message.find("interrupted 2 times"), std::string::npos);
   }
   Database db(file);
-  EXPECT_EQ(db.query("SELECT version FROM schema_version").at(0).at(0), "1");
+  // Version 2 added claims with leases and outside schedulers (scale-out).
+  EXPECT_EQ(db.query("SELECT version FROM schema_version").at(0).at(0), "2");
   EXPECT_EQ(db.query("PRAGMA journal_mode").at(0).at(0), "wal");
 }
 

@@ -13,6 +13,8 @@ class ValidationCase : public ::testing::TestWithParam<validation::Case> {};
 
 TEST_P(ValidationCase, MatchesItsReference) {
   const validation::Case& c = GetParam();
+  if (!c.disagreement.empty())
+    GTEST_SKIP() << c.id << " is reported, not claimed: " << c.disagreement;
   PreparedJob job = prepare_job(c.job, 2);
   const RunResult result = run_job(job);
   ASSERT_EQ(result.status, "completed") << result.message;

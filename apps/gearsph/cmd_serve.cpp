@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "apps/gearsph/cli.hpp"
+#include "apps/gearsph/serve_images.hpp"
 #include "server/server.hpp"
 
 namespace gearsph::cli {
@@ -47,6 +48,19 @@ int cmd_serve(Args& args) {
   c.port = static_cast<unsigned short>(port);
   if (auto v = args.option("bind")) c.bind = *v;
   if (auto v = args.option("data")) c.data_dir = *v;
+  if (auto v = args.option("store")) c.store = *v;
+  if (auto v = args.option("results")) c.results_dir = *v;
+  c.local_workers = !args.flag("no-local-workers");
+  if (auto v = args.option("dispatch")) c.dispatch = *v;
+  if (c.dispatch != "local" && c.dispatch != "slurm") {
+    throw std::invalid_argument("--dispatch is local or slurm, not '" + c.dispatch + "'");
+  }
+  if (c.dispatch == "slurm" && !c.local_workers) {
+    throw std::invalid_argument("--no-local-workers and --dispatch slurm exclude each other");
+  }
+  c.lease_s = number_option(args, "lease", c.lease_s);
+  while (auto v = args.option("sbatch-arg")) c.sbatch_args.push_back(*v);
+  if (auto v = args.option("slurm-gearsph")) c.gearsph_executable = *v;
   c.workers = args.integer("workers", 0);
   c.threads_per_job = args.integer("threads-per-job", 0);
   if (c.workers < 0 || c.threads_per_job < 0) {
@@ -91,15 +105,23 @@ int cmd_serve(Args& args) {
   // Without this, writing to a client that left would end the process.
   std::signal(SIGPIPE, SIG_IGN);
 
-  // The renderer registers its image provider here once it exists:
-  //   c.image_provider = render::image_provider();
+  // Images of results (empty, so 501, in a build without the renderer).
+  c.image_provider = results_image_provider();
+  if (!c.local_workers) c.workers = 0;
   server::Server s(c);
-  std::printf(
-      "gearsph serve: listening on http://%s:%u (data %s, %d worker%s x %d thread%s%s%s%s)\n",
-      c.bind.c_str(), static_cast<unsigned>(s.port()), c.data_dir.string().c_str(), c.workers,
-      c.workers == 1 ? "" : "s", c.threads_per_job, c.threads_per_job == 1 ? "" : "s",
-      c.token.empty() ? "" : ", token required",
-      c.web_root.empty() ? "; no dashboard found" : "; dashboard ", c.web_root.string().c_str());
+  const std::string runs =
+      c.dispatch == "slurm"
+          ? "jobs go to Slurm, " + std::to_string(c.threads_per_job) + " CPUs each"
+      : c.local_workers ? std::to_string(c.workers) + (c.workers == 1 ? " worker" : " workers") +
+                              " x " + std::to_string(c.threads_per_job) +
+                              (c.threads_per_job == 1 ? " thread" : " threads")
+                        : "no local workers";
+  std::printf("gearsph serve: listening on http://%s:%u (data %s, %s%s%s%s)\n", c.bind.c_str(),
+              static_cast<unsigned>(s.port()),
+              c.store.empty() ? c.data_dir.string().c_str() : "in a shared store", runs.c_str(),
+              c.token.empty() ? "" : ", token required",
+              c.web_root.empty() ? "; no dashboard found" : "; dashboard ",
+              c.web_root.string().c_str());
   std::fflush(stdout);
   s.run();
   return 0;

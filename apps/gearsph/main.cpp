@@ -1,5 +1,6 @@
 // gearsph: one executable, several subcommands.
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <stdexcept>
@@ -20,14 +21,29 @@ usage:
   gearsph validate [--quick] [--out DIR] [--threads N]
       run the validation cases against their references; prints a table
       and writes DIR/validation.json (DIR defaults to ./validation)
+  gearsph study stability [--out DIR] [--full] [--only TEXT] [--threads N] [--no-images]
+      the stability study: failure-prone cases x methods, measured; writes
+      DIR/stability.csv, stability.json, stability_table.png and fields/*.png
+      (DIR defaults to ./stability; --full adds the long cells, docs/stability.md)
+  gearsph bench [--quick] [--out DIR] [--no-pysph] [--skip-full] [--max-particles N]
+      speed side by side: plate and gear throughput at 1 and 2 threads, PySPH's
+      plate, cost per particle-step 1e3..1e6, memory, the paper's full case
+  gearsph bench pareto --out DIR [--quick] [--threads N]
+      error against cost over kernel, spacing, h/dx, CFL, UL/TL (CSV + PNG)
   gearsph schema
       print the job schema (JSON Schema draft-07)
   gearsph geometry JOB.json --out DIR
       the scene's outlines and particles as SVG and CSV, without running it
+  gearsph render RUN_DIR --out FILE.png [--field von_mises] [--frame K] [--zoom x0,y0,x1,y1]
+      a frame of a finished run as the service draws it (frame -1: the last)
+  gearsph plot RUN_DIR --columns A,B --out FILE.png [--title T] [--ylabel L] [--scale S]
+      history.csv columns against time
   gearsph serve [--port 8080] [--bind 127.0.0.1] [--data DIR] [--workers N] [--threads-per-job M] [--token-file F] [--cors-origin ORIGIN] [--web DIR]
       the job service: HTTP API, job store, worker pool (docs/api.md lists every option)
   gearsph submit JOB.json --server URL [--wait] [--out DIR] [--token-file F]
       submit a job to a server, follow its progress, download its results
+  gearsph worker --store URL --results DIR [--workers N] [--threads-per-job M] [--lease S]
+      run jobs from a shared job store (docs/scale-out.md)
   gearsph help
 
 exit status: 0 success, 1 error, 2 invalid job or usage, 3 run diverged, 4 cancelled
@@ -35,14 +51,29 @@ exit status: 0 success, 1 error, 2 invalid job or usage, 3 run diverged, 4 cance
 
 }  // namespace
 
+namespace gearsph::cli {
+int cmd_study(Args& args);             // cmd_study.cpp
+int cmd_bench(int argc, char** argv);  // cmd_bench.cpp: `bench` and `bench pareto`
+}  // namespace gearsph::cli
+
 #ifdef GEARSPH_WITH_SERVICE
 namespace gearsph::cli {
 int cmd_serve(Args& args);
 int cmd_submit(Args& args);
+int cmd_worker(Args& args);
+#ifdef GEARSPH_WITH_RENDER
+int cmd_render(Args& args);  // cmd_render.cpp
+int cmd_plot(Args& args);
+#endif
 }  // namespace gearsph::cli
 #endif
 
 int main(int argc, char** argv) {
+  // OpenMP threads that spin at barriers waste their core when the machine
+  // is shared: 2-thread runs were 10-70x slower under load
+  // (docs/speed-accuracy.md). Sleeping threads cost little when it is not;
+  // a policy the user set is kept. Read by the runtime at its first use.
+  setenv("OMP_WAIT_POLICY", "passive", 0);
 #ifdef GEARSPH_WITH_RESULTS
   gearsph::results::register_outputs();
 #endif
@@ -57,12 +88,19 @@ int main(int argc, char** argv) {
     if (cmd == "run") return gearsph::cli::cmd_run(args);
     if (cmd == "validate") return gearsph::cli::cmd_validate(args);
     if (cmd == "schema") return gearsph::cli::cmd_schema(args);
+    if (cmd == "study") return gearsph::cli::cmd_study(args);
+    if (cmd == "bench") return gearsph::cli::cmd_bench(argc, argv);
     if (cmd == "geometry") return gearsph::cli::cmd_geometry(args);
 #ifdef GEARSPH_WITH_SERVICE
     if (cmd == "serve") return gearsph::cli::cmd_serve(args);
 #endif
 #ifdef GEARSPH_WITH_SERVICE
     if (cmd == "submit") return gearsph::cli::cmd_submit(args);
+    if (cmd == "worker") return gearsph::cli::cmd_worker(args);
+#ifdef GEARSPH_WITH_RENDER
+    if (cmd == "render") return gearsph::cli::cmd_render(args);
+    if (cmd == "plot") return gearsph::cli::cmd_plot(args);
+#endif
 #endif
     std::fprintf(stderr, "gearsph: unknown command '%s'\n\n%s", cmd.c_str(), kUsage);
     return 2;

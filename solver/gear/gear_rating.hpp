@@ -51,4 +51,12 @@ struct ThirtyDegreePoints {
 };
 ThirtyDegreePoints thirty_degree_points(const geometry::PinionGeometry& pinion);
 
+// ISO 6336-1:2006 method B single-pair mesh stiffness c' of a spur pinion
+// with its rack [N/m per metre of face width]: c'_th = 1/q' (eq. 69, the
+// rack's terms with 1/z_n2 = 0), times C_M = 0.8 (solid gears), C_R = 1
+// (solid blank), C_B of the basic rack (eq. 72), cos(beta) = 1, and E/E_st
+// with E = 2 E1 E2/(E1 + E2) for materials other than steel (E_st 206 GPa).
+double iso_single_pair_stiffness(const geometry::PinionGeometry& pinion, double E_pinion_Pa,
+                                 double E_rack_Pa);
+
 }  // namespace gearsph::gear

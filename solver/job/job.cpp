@@ -103,6 +103,7 @@ Scene build_scene(const nlohmann::json& job, const Discretization& disc) {
   if (type == "bar_impact") return scenes::build_bar_impact(in);
   if (type == "hertz") return scenes::build_hertz(in);
   if (type == "rack_pinion") return scenes::build_rack_pinion(in);
+  if (type == "tension_strip") return scenes::build_tension_strip(in);
   refuse("/scene/type", "is not a scene this build knows");
 }
 

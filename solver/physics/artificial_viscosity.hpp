@@ -12,10 +12,14 @@ namespace gearsph::physics {
 // vr = v_ij . x_ij, r2 = |x_ij|^2.
 inline double monaghan_pi(const ArtificialViscosity& av, double h, double vr, double r2,
                           double c_mean, double rho_mean) {
-  if (vr >= 0.0) return 0.0;  // separating pairs are not damped
   const double eta = av.eta_over_h * h;
   const double phi = h * vr / (r2 + eta * eta);
-  return (-av.alpha * c_mean * phi + av.beta * phi * phi) / rho_mean;
+  const double pi = (-av.alpha * c_mean * phi + av.beta * phi * phi) / rho_mean;
+  // Separating pairs are not damped. Computed for every pair and selected
+  // (not branched on): approach and separation alternate unpredictably along
+  // a row, so a branch mispredicts; r2 + eta^2 and rho_mean are positive, so
+  // the unused value is always finite.
+  return vr < 0.0 ? pi : 0.0;
 }
 
 }  // namespace gearsph::physics

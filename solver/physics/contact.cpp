@@ -90,73 +90,88 @@ void contact_forces(Simulation& sim, double dt) {
   std::int64_t active = 0;
   double deepest = 0.0, stored = 0.0, dissipated = 0.0;
 
-#pragma omp parallel for num_threads(sim.threads) schedule(static) \
+  if (surface) {
+    state.normal_x.resize(n);  // allocates on the first step only
+    state.normal_y.resize(n);
+  }
+  double* normal_x = state.normal_x.data();
+  double* normal_y = state.normal_y.data();
+
+#pragma omp parallel num_threads(sim.threads)
+  {
+    if (surface) {
+#pragma omp for schedule(static)
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!std::isfinite(p.surf_depth[i])) continue;
+        const double ci = std::cos(p.rot[i]), si = std::sin(p.rot[i]);
+        normal_x[i] = ci * p.surf_nx[i] - si * p.surf_ny[i];
+        normal_y[i] = si * p.surf_nx[i] + ci * p.surf_ny[i];
+      }
+    }
+#pragma omp for schedule(static) \
     reduction(+ : active, stored, dissipated, fx_body[:kMaxBodies], fy_body[:kMaxBodies]) \
     reduction(max : deepest)
-  for (std::size_t i = 0; i < n; ++i) {
-    const Material& mi = sim.material_of(i);
-    const double vi = p.mass[i] / p.rho[i];
-    double fx = 0.0, fy = 0.0;
-    for (std::uint32_t k = nl.rows[i]; k < nl.rows[i + 1]; ++k) {
-      const std::uint32_t j = nl.j[k];
-      const double dxij = p.x[i] - p.x[j], dyij = p.y[i] - p.y[j];
-      double nx, ny, overlap, weight = 1.0;
-      if (surface) {
-        // True-surface gap (contact_surface.hpp); normals turned with the material.
-        if (!std::isfinite(p.surf_depth[i]) || !std::isfinite(p.surf_depth[j])) continue;
-        const double ci = std::cos(p.rot[i]), si = std::sin(p.rot[i]);
-        const double cj = std::cos(p.rot[j]), sj = std::sin(p.rot[j]);
-        const SurfacePair sp = surface_pair(
-            dxij, dyij, ci * p.surf_nx[i] - si * p.surf_ny[i],
-            si * p.surf_nx[i] + ci * p.surf_ny[i], cj * p.surf_nx[j] - sj * p.surf_ny[j],
-            sj * p.surf_nx[j] + cj * p.surf_ny[j], p.surf_depth[i], p.surf_depth[j], dx);
-        if (!sp.active) continue;
-        nx = sp.nx;
-        ny = sp.ny;
-        overlap = sp.overlap;
-        weight = sp.weight;
-      } else {
-        const double r2 = dxij * dxij + dyij * dyij;
-        if (r2 >= r0 * r0) continue;
-        const double r = std::sqrt(r2);
-        overlap = r0 - r;
-        nx = dxij / r;
-        ny = dyij / r;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Material& mi = sim.material_of(i);
+      const double vi = p.mass[i] / p.rho[i];
+      double fx = 0.0, fy = 0.0;
+      for (std::uint32_t k = nl.rows[i]; k < nl.rows[i + 1]; ++k) {
+        const std::uint32_t j = nl.j[k];
+        const double dxij = p.x[i] - p.x[j], dyij = p.y[i] - p.y[j];
+        double nx, ny, overlap, weight = 1.0;
+        if (surface) {
+          // True-surface gap (contact_surface.hpp); normals turned with the material.
+          if (!std::isfinite(p.surf_depth[i]) || !std::isfinite(p.surf_depth[j])) continue;
+          const SurfacePair sp = surface_pair(dxij, dyij, normal_x[i], normal_y[i], normal_x[j],
+                                              normal_y[j], p.surf_depth[i], p.surf_depth[j], dx);
+          if (!sp.active) continue;
+          nx = sp.nx;
+          ny = sp.ny;
+          overlap = sp.overlap;
+          weight = sp.weight;
+        } else {
+          const double r2 = dxij * dxij + dyij * dyij;
+          if (r2 >= r0 * r0) continue;
+          const double r = std::sqrt(r2);
+          overlap = r0 - r;
+          nx = dxij / r;
+          ny = dyij / r;
+        }
+        const Material& mj = sim.material_of(j);
+        const double e_star = contact_modulus(mi, mj);
+        const double vj = p.mass[j] / p.rho[j];
+        const double vol = 2.0 * vi * vj / (vi + vj);
+        PairLaw law = c.model == ContactModel::Hertz
+                          ? hertz_penalty(e_star, dx, overlap)
+                          : seed_penalty(c.D, e_star, vol, surface ? dx : r0, overlap);
+        law.force *= weight;
+        law.stiffness *= weight;
+        law.energy *= weight;
+        // Dashpot on the normal approach speed, as a fraction of critical
+        // damping of the pair oscillator; the total never pulls (no adhesion).
+        const double vn = (p.vx[i] - p.vx[j]) * nx + (p.vy[i] - p.vy[j]) * ny;  // > 0 separating
+        const double m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+        const double damper = 2.0 * c.damping_ratio * std::sqrt(law.stiffness * m_eff);
+        const double f = std::max(0.0, law.force - damper * vn);
+        fx += f * nx;
+        fy += f * ny;
+        // Each pair is seen from both ends: count its energy and the pair once.
+        if (i < j) {
+          ++active;
+          stored += law.energy;
+          dissipated += (f - law.force) * -vn * dt;  // dashpot power times dt
+        }
+        deepest = std::max(deepest, overlap);
       }
-      const Material& mj = sim.material_of(j);
-      const double e_star = contact_modulus(mi, mj);
-      const double vj = p.mass[j] / p.rho[j];
-      const double vol = 2.0 * vi * vj / (vi + vj);
-      PairLaw law = c.model == ContactModel::Hertz
-                        ? hertz_penalty(e_star, dx, overlap)
-                        : seed_penalty(c.D, e_star, vol, surface ? dx : r0, overlap);
-      law.force *= weight;
-      law.stiffness *= weight;
-      law.energy *= weight;
-      // Dashpot on the normal approach speed, as a fraction of critical
-      // damping of the pair oscillator; the total never pulls (no adhesion).
-      const double vn = (p.vx[i] - p.vx[j]) * nx + (p.vy[i] - p.vy[j]) * ny;  // > 0 separating
-      const double m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
-      const double damper = 2.0 * c.damping_ratio * std::sqrt(law.stiffness * m_eff);
-      const double f = std::max(0.0, law.force - damper * vn);
-      fx += f * nx;
-      fy += f * ny;
-      // Each pair is seen from both ends: count its energy and the pair once.
-      if (i < j) {
-        ++active;
-        stored += law.energy;
-        dissipated += (f - law.force) * -vn * dt;  // dashpot power times dt
+      p.contact_ax[i] = fx / p.mass[i];
+      p.contact_ay[i] = fy / p.mass[i];
+      p.ext_ax[i] += p.contact_ax[i];
+      p.ext_ay[i] += p.contact_ay[i];
+      const int b = p.body[i];
+      if (b < kMaxBodies) {
+        fx_body[b] += fx;
+        fy_body[b] += fy;
       }
-      deepest = std::max(deepest, overlap);
-    }
-    p.contact_ax[i] = fx / p.mass[i];
-    p.contact_ay[i] = fy / p.mass[i];
-    p.ext_ax[i] += p.contact_ax[i];
-    p.ext_ay[i] += p.contact_ay[i];
-    const int b = p.body[i];
-    if (b < kMaxBodies) {
-      fx_body[b] += fx;
-      fy_body[b] += fy;
     }
   }
   for (std::size_t b = 0; b < n_bodies && b < static_cast<std::size_t>(kMaxBodies); ++b) {

@@ -39,6 +39,10 @@ struct ContactState {
   // Total contact force on each body [N per metre of thickness].
   std::vector<double> force_x, force_y;
   double stored_energy = 0.0;  // penalty energy in the active pairs [J/m]
+  // Scratch of the surface model: each surface particle's outward normal
+  // turned by its material rotation, computed once per step rather than per
+  // pair (it was a sine and a cosine per pair end).
+  std::vector<double> normal_x, normal_y;
 };
 
 namespace physics {

@@ -1,6 +1,7 @@
 #include "solver/physics/total_lagrangian.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "solver/core/simulation.hpp"
 #include "solver/physics/artificial_viscosity.hpp"
@@ -22,9 +23,14 @@ void total_lagrangian_setup(Simulation& sim) {
     rp.giy.assign(m, 0.0);
     rp.gjx.assign(m, 0.0);
     rp.gjy.assign(m, 0.0);
-    rp.w0.assign(m, 0.0);
+    // W itself is needed only by hourglass control: without it an entry
+    // takes 8 bytes less (docs/speed-accuracy.md, memory per particle).
+    const bool keep_w = sim.method.hourglass.enabled();
+    rp.w0.assign(keep_w ? m : 0, 0.0);
     rp.dw0.assign(m, 0.0);
-    for (auto* v : {&rp.px, &rp.py, &rp.pyx, &rp.pyy}) v->assign(n, 0.0);
+    for (auto* v : {&rp.px, &rp.py, &rp.pyx, &rp.pyy, &rp.ux, &rp.uy}) v->assign(n, 0.0);
+    rp.vol0.resize(n);
+    for (std::size_t i = 0; i < n; ++i) rp.vol0[i] = p.mass[i] / p.rho0[i];
     // Gradient correction of every particle from its reference neighbourhood.
     const GradientCorrection requested = sim.method.correction;
     const bool quadratic = requested == GradientCorrection::Quadratic;
@@ -35,7 +41,7 @@ void total_lagrangian_setup(Simulation& sim) {
         const std::uint32_t j = rp.j[k];
         const double dx = p.x0[i] - p.x0[j], dy = p.y0[i] - p.y0[j];
         const double r = std::sqrt(dx * dx + dy * dy);
-        rp.w0[k] = kernel.W(r);
+        if (keep_w) rp.w0[k] = kernel.W(r);
         rp.dw0[k] = kernel.dW(r);
         mom.add(-(p.mass[j] / p.rho0[j]) * rp.dw0[k] / r, dx, dy, quadratic);
       }
@@ -60,124 +66,206 @@ void total_lagrangian_setup(Simulation& sim) {
         const double dx = p.x0[i] - p.x0[j], dy = p.y0[i] - p.y0[j];
         const double r = std::sqrt(dx * dx + dy * dy);
         const double dw_r = rp.dw0[k] / r;  // = -w
-        weight(corr[i], dw_r, dx, dy, rp.gix[k], rp.giy[k]);
+        const double vol_j = rp.vol0[j];
         double gx = 0, gy = 0;
+        weight(corr[i], dw_r, dx, dy, gx, gy);
+        rp.gix[k] = vol_j * gx;
+        rp.giy[k] = vol_j * gy;
         weight(corr[j], dw_r, -dx, -dy, gx, gy);  // G_ji
-        rp.gjx[k] = -gx;
-        rp.gjy[k] = -gy;
+        rp.gjx[k] = -vol_j * gx;
+        rp.gjy[k] = -vol_j * gy;
+      }
+    }
+    rp.sgx.assign(n, 0.0);
+    rp.sgy.assign(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::uint32_t k = rp.rows[i]; k < rp.rows[i + 1]; ++k) {
+        rp.sgx[i] += rp.gix[k];
+        rp.sgy[i] += rp.giy[k];
       }
     }
   });
+  rp.lambda_body.clear();
+  rp.mu_body.clear();
+  for (const Body& b : sim.bodies) {
+    rp.lambda_body.push_back(b.material.lame_lambda());
+    rp.mu_body.push_back(b.material.shear_modulus());
+  }
 }
 
 void total_lagrangian_stress(Simulation& sim) {
   Particles& p = sim.particles;
   ReferencePairs& rp = sim.reference;
   const std::size_t n = p.n;
-#pragma omp parallel for num_threads(sim.threads) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    // F = I + sum_j V0_j (u_j - u_i) (x) g_ij: written with displacements so
-    // that round-off does not swamp strains of 1e-6 on positions of 1e-1 m.
-    const double uxi = p.x[i] - p.x0[i], uyi = p.y[i] - p.y0[i];
-    double fxx = 1, fxy = 0, fyx = 0, fyy = 1;
-    for (std::uint32_t k = rp.rows[i]; k < rp.rows[i + 1]; ++k) {
-      const std::uint32_t j = rp.j[k];
-      const double vol = p.mass[j] / p.rho0[j];
-      const double dux = (p.x[j] - p.x0[j]) - uxi, duy = (p.y[j] - p.y0[j]) - uyi;
-      fxx += vol * dux * rp.gix[k];
-      fxy += vol * dux * rp.giy[k];
-      fyx += vol * duy * rp.gix[k];
-      fyy += vol * duy * rp.giy[k];
+  const std::uint32_t* rows = rp.rows.data();
+  const std::uint32_t* jj = rp.j.data();
+  const double* gix = rp.gix.data();
+  const double* giy = rp.giy.data();
+  const double* lambda_body = rp.lambda_body.data();
+  const double* mu_body = rp.mu_body.data();
+  double* ux = rp.ux.data();
+  double* uy = rp.uy.data();
+  // One parallel region, two work-shared loops: the displacements first, so
+  // that the pair loop reads one array per component instead of two.
+#pragma omp parallel num_threads(sim.threads)
+  {
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      ux[i] = p.x[i] - p.x0[i];
+      uy[i] = p.y[i] - p.y0[i];
     }
-    p.fxx[i] = fxx;
-    p.fxy[i] = fxy;
-    p.fyx[i] = fyx;
-    p.fyy[i] = fyy;
-    // Rotation of the polar decomposition F = R U (2D: one angle).
-    p.rot[i] = std::atan2(fyx - fxy, fxx + fyy);
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      // F = I + sum_j V0_j (u_j - u_i) (x) g_ij: written with displacements so
+      // that round-off does not swamp strains of 1e-6 on positions of 1e-1 m
+      // (the sum of the small terms is formed first, then added to I).
+      const double uxi = ux[i], uyi = uy[i];
+      double sxx_ = 0, sxy_ = 0, syx_ = 0, syy_ = 0;
+      for (std::uint32_t k = rows[i]; k < rows[i + 1]; ++k) {
+        const std::uint32_t j = jj[k];
+        const double dux = ux[j] - uxi, duy = uy[j] - uyi;
+        sxx_ += dux * gix[k];
+        sxy_ += dux * giy[k];
+        syx_ += duy * gix[k];
+        syy_ += duy * giy[k];
+      }
+      const double fxx = 1.0 + sxx_, fxy = sxy_, fyx = syx_, fyy = 1.0 + syy_;
+      p.fxx[i] = fxx;
+      p.fxy[i] = fxy;
+      p.fyx[i] = fyx;
+      p.fyy[i] = fyy;
+      // Rotation of the polar decomposition F = R U (2D: one angle); only the
+      // contact normals of surface particles use it.
+      if (std::isfinite(p.surf_depth[i])) p.rot[i] = std::atan2(fyx - fxy, fxx + fyy);
 
-    // Saint Venant-Kirchhoff, plane strain (E_zz = 0).
-    const Material& mat = sim.material_of(i);
-    const double lam = mat.lame_lambda(), mu = mat.shear_modulus();
-    const double exx = 0.5 * (fxx * fxx + fyx * fyx - 1.0);
-    const double eyy = 0.5 * (fxy * fxy + fyy * fyy - 1.0);
-    const double exy = 0.5 * (fxx * fxy + fyx * fyy);
-    const double tr = exx + eyy;
-    const double sxx = lam * tr + 2 * mu * exx, syy = lam * tr + 2 * mu * eyy, sxy = 2 * mu * exy;
-    const double szz = lam * tr;
-    // P = F S
-    rp.px[i] = fxx * sxx + fxy * sxy;
-    rp.py[i] = fxx * sxy + fxy * syy;
-    rp.pyx[i] = fyx * sxx + fyy * sxy;
-    rp.pyy[i] = fyx * sxy + fyy * syy;
-    // Cauchy sigma = F S F^T / J (sigma_zz = S_zz / J) for output.
-    const double jac = fxx * fyy - fxy * fyx;
-    const double cxx = (rp.px[i] * fxx + rp.py[i] * fxy) / jac;
-    const double cyy = (rp.pyx[i] * fyx + rp.pyy[i] * fyy) / jac;
-    const double cxy = (rp.px[i] * fyx + rp.py[i] * fyy) / jac;
-    const double czz = szz / jac;
-    const double mean = (cxx + cyy + czz) / 3.0;
-    p.p[i] = -mean;
-    p.sxx[i] = cxx - mean;
-    p.syy[i] = cyy - mean;
-    p.szz[i] = czz - mean;
-    p.sxy[i] = cxy;
-    p.rho[i] = p.rho0[i] / jac;
+      // Saint Venant-Kirchhoff, plane strain (E_zz = 0).
+      const int b = p.body[i];
+      const double lam = lambda_body[b], mu = mu_body[b];
+      const double exx = 0.5 * (fxx * fxx + fyx * fyx - 1.0);
+      const double eyy = 0.5 * (fxy * fxy + fyy * fyy - 1.0);
+      const double exy = 0.5 * (fxx * fxy + fyx * fyy);
+      const double tr = exx + eyy;
+      const double sxx = lam * tr + 2 * mu * exx, syy = lam * tr + 2 * mu * eyy, sxy = 2 * mu * exy;
+      const double szz = lam * tr;
+      // P = F S
+      const double pxx = fxx * sxx + fxy * sxy, pxy = fxx * sxy + fxy * syy;
+      const double pyx = fyx * sxx + fyy * sxy, pyy = fyx * sxy + fyy * syy;
+      rp.px[i] = pxx;
+      rp.py[i] = pxy;
+      rp.pyx[i] = pyx;
+      rp.pyy[i] = pyy;
+      // Cauchy sigma = F S F^T / J (sigma_zz = S_zz / J) for output.
+      const double inv_jac = 1.0 / (fxx * fyy - fxy * fyx);
+      const double cxx = (pxx * fxx + pxy * fxy) * inv_jac;
+      const double cyy = (pyx * fyx + pyy * fyy) * inv_jac;
+      const double cxy = (pxx * fyx + pxy * fyy) * inv_jac;
+      const double czz = szz * inv_jac;
+      const double mean = (cxx + cyy + czz) / 3.0;
+      p.p[i] = -mean;
+      p.sxx[i] = cxx - mean;
+      p.syy[i] = cyy - mean;
+      p.szz[i] = czz - mean;
+      p.sxy[i] = cxy;
+      p.rho[i] = p.rho0[i] * inv_jac;
+    }
   }
 }
 
-void total_lagrangian_momentum(Simulation& sim, double dt) {
+namespace {
+
+// The pair loop of the momentum equation, one instantiation with and one
+// without hourglass control: raw pointers and no branches (the viscosity's
+// switch is a select). The row sums are left scalar on purpose: rows hold
+// ~28 entries and every entry gathers a dozen neighbour values, so
+// `omp simd` reductions cost more in gathers, masks and reduction set-up
+// than they save (measured: 17 % slower here, 2.2x slower in the F loop;
+// docs/speed-accuracy.md).
+template <bool kHourglass>
+void momentum_loop(Simulation& sim, double dt) {
   Particles& p = sim.particles;
   const ReferencePairs& rp = sim.reference;
   const ArtificialViscosity& av = sim.method.viscosity;
   const double h = sim.h();
   const double hg = sim.method.hourglass.coefficient;
+  const double alpha = av.alpha, beta = av.beta;
+  const double eta2 = (av.eta_over_h * h) * (av.eta_over_h * h);
   const std::size_t n = p.n;
+  const std::uint32_t* rows = rp.rows.data();
+  const std::uint32_t* jj = rp.j.data();
+  const double *gjx = rp.gjx.data(), *gjy = rp.gjy.data();
+  const double *dw0 = rp.dw0.data(), *w0 = rp.w0.data();
+  const double *Pxx = rp.px.data(), *Pxy = rp.py.data();
+  const double *Pyx = rp.pyx.data(), *Pyy = rp.pyy.data();
+  const double *sgx = rp.sgx.data(), *sgy = rp.sgy.data();
+  const double* vol0 = rp.vol0.data();
+  const double *x = p.x.data(), *y = p.y.data(), *vx = p.vx.data(), *vy = p.vy.data();
+  const double *x0 = p.x0.data(), *y0 = p.y0.data();
+  const double *cs = p.cs.data(), *rho = p.rho.data(), *mass = p.mass.data();
+  const double *Fxx = p.fxx.data(), *Fxy = p.fxy.data(), *Fyx = p.fyx.data(), *Fyy = p.fyy.data();
   double dissipated = 0.0;
 #pragma omp parallel for num_threads(sim.threads) schedule(static) reduction(+ : dissipated)
   for (std::size_t i = 0; i < n; ++i) {
-    const double pxx = rp.px[i], pxy = rp.py[i], pyx = rp.pyx[i], pyy = rp.pyy[i];
     const double inv_rho0 = 1.0 / p.rho0[i];
     const double e_mod = sim.material_of(i).E;
-    double ax = 0, ay = 0, power = 0;
-    for (std::uint32_t k = rp.rows[i]; k < rp.rows[i + 1]; ++k) {
-      const std::uint32_t j = rp.j[k];
-      const double vol_j = p.mass[j] / p.rho0[j];
-      // (P_i B_i + P_j B_j) grad0_i W_ij
-      ax += vol_j * inv_rho0 *
-            (pxx * rp.gix[k] + pxy * rp.giy[k] + rp.px[j] * rp.gjx[k] + rp.py[j] * rp.gjy[k]);
-      ay += vol_j * inv_rho0 *
-            (pyx * rp.gix[k] + pyy * rp.giy[k] + rp.pyx[j] * rp.gjx[k] + rp.pyy[j] * rp.gjy[k]);
+    const double xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
+    const double csi = cs[i], rhoi = rho[i];
+    // (P_i B_i + P_j B_j) grad0_i W_ij V0_j: the P_i share is P_i times the
+    // row's gradient sum (setup), only the P_j share is summed over pairs.
+    double sx = 0, sy = 0, ax = 0, ay = 0, power = 0;
+    for (std::uint32_t k = rows[i]; k < rows[i + 1]; ++k) {
+      const std::uint32_t j = jj[k];
+      sx += Pxx[j] * gjx[k] + Pxy[j] * gjy[k];
+      sy += Pyx[j] * gjx[k] + Pyy[j] * gjy[k];
       // Viscosity on the current pair geometry (reference kernel slope).
-      const double dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j];
-      const double dvx = p.vx[i] - p.vx[j], dvy = p.vy[i] - p.vy[j];
-      const double r2 = dx * dx + dy * dy, inv_r = 1.0 / std::sqrt(r2);
-      const double gx = rp.dw0[k] * dx * inv_r, gy = rp.dw0[k] * dy * inv_r;
-      const double pi_ij = monaghan_pi(av, h, dvx * dx + dvy * dy, r2, 0.5 * (p.cs[i] + p.cs[j]),
-                                       0.5 * (p.rho[i] + p.rho[j]));
-      const double mj = p.mass[j];
-      ax -= mj * pi_ij * gx;
-      ay -= mj * pi_ij * gy;
-      power += mj * pi_ij * (dvx * gx + dvy * gy);
-      if (hg > 0.0) {
+      const double dx = xi - x[j], dy = yi - y[j];
+      const double dvx = vxi - vx[j], dvy = vyi - vy[j];
+      const double r2 = dx * dx + dy * dy;
+      // m_j Pi_ij dW/dr / r with Monaghan's Pi_ij (artificial_viscosity.hpp)
+      // over one denominator: Pi = h v.x (beta h v.x - alpha c q) / (q^2 rho),
+      // q = r^2 + eta^2, so the pair costs one square root and one division.
+      const double vr = dvx * dx + dvy * dy, q = r2 + eta2;
+      const double c_mean = 0.5 * (csi + cs[j]), rho_mean = 0.5 * (rhoi + rho[j]);
+      const double num = mass[j] * dw0[k] * h * vr * (beta * h * vr - alpha * c_mean * q);
+      const double mpg_all = num / (q * q * rho_mean * std::sqrt(r2));
+      const double mpg = vr < 0.0 ? mpg_all : 0.0;  // separating pairs are not damped
+      ax -= mpg * dx;
+      ay -= mpg * dy;
+      power += mpg * vr;
+      if constexpr (kHourglass) {
         // Ganzenmueller 2015: penalise x_ij - F_mean X_ij along the pair.
-        const double X = p.x0[i] - p.x0[j], Y = p.y0[i] - p.y0[j];
-        const double fxx = 0.5 * (p.fxx[i] + p.fxx[j]), fxy = 0.5 * (p.fxy[i] + p.fxy[j]);
-        const double fyx = 0.5 * (p.fyx[i] + p.fyx[j]), fyy = 0.5 * (p.fyy[i] + p.fyy[j]);
+        const double vol_j = vol0[j];
+        const double X = x0[i] - x0[j], Y = y0[i] - y0[j];
+        const double fxx = 0.5 * (Fxx[i] + Fxx[j]), fxy = 0.5 * (Fxy[i] + Fxy[j]);
+        const double fyx = 0.5 * (Fyx[i] + Fyx[j]), fyy = 0.5 * (Fyy[i] + Fyy[j]);
         const double ex = dx - (fxx * X + fxy * Y), ey = dy - (fyx * X + fyy * Y);
+        const double inv_r = 1.0 / std::sqrt(r2);
         const double stretch = (ex * dx + ey * dy) * inv_r;
         const double R2 = X * X + Y * Y;
-        const double f = -0.5 * hg * e_mod * vol_j * inv_rho0 * rp.w0[k] * stretch / R2 * inv_r;
+        const double f = -0.5 * hg * e_mod * vol_j * inv_rho0 * w0[k] * stretch / R2 * inv_r;
         ax += f * dx;
         ay += f * dy;
         power -= f * (dvx * dx + dvy * dy);
       }
     }
-    p.ax[i] = ax;
-    p.ay[i] = ay;
-    dissipated += 0.5 * p.mass[i] * power;
+    const double pxx = Pxx[i], pxy = Pxy[i], pyx = Pyx[i], pyy = Pyy[i];
+    p.ax[i] = ax + inv_rho0 * (pxx * sgx[i] + pxy * sgy[i] + sx);
+    p.ay[i] = ay + inv_rho0 * (pyx * sgx[i] + pyy * sgy[i] + sy);
+    dissipated += 0.5 * mass[i] * power;
   }
   sim.energy.dissipated += dt * dissipated;
+}
+
+}  // namespace
+
+void total_lagrangian_momentum(Simulation& sim, double dt) {
+  if (sim.method.hourglass.enabled()) {
+    if (sim.reference.w0.size() != sim.reference.j.size()) {
+      throw std::logic_error("hourglass control switched on after total_lagrangian_setup");
+    }
+    momentum_loop<true>(sim, dt);
+  } else {
+    momentum_loop<false>(sim, dt);
+  }
 }
 
 }  // namespace gearsph::physics

@@ -20,12 +20,22 @@ struct Simulation;
 // changes cached per entry.
 struct ReferencePairs {
   std::vector<std::uint32_t> rows, j;
-  std::vector<double> gix, giy;  // B_i grad0_i W_ij
-  std::vector<double> gjx, gjy;  // B_j grad0_i W_ij
-  std::vector<double> w0;        // W(|X_ij|)
+  // Corrected gradients times the neighbour's reference volume V0_j, the
+  // only form in which the pair loops use them (one product and one gather
+  // of V0_j fewer per pair).
+  std::vector<double> gix, giy;  // V0_j B_i grad0_i W_ij
+  std::vector<double> gjx, gjy;  // V0_j B_j grad0_i W_ij
+  std::vector<double> w0;        // W(|X_ij|), kept only with hourglass control
   std::vector<double> dw0;       // dW/dr at |X_ij|
   std::vector<double> px, py;    // P (first Piola-Kirchhoff), cached per particle:
   std::vector<double> pyx, pyy;  // P = [[px, py], [pyx, pyy]]
+  std::vector<double> vol0;      // reference volume m/rho0, per particle
+  std::vector<double> ux, uy;    // displacement x - X, per particle, refreshed each step
+  // sum_j V0_j B_i grad0_i W_ij per particle: P_i is constant over row i, so
+  // its share of the momentum sum is P_i times this, with no per-pair work.
+  std::vector<double> sgx, sgy;
+  // Lame constants per body, so that the step divides nothing per particle.
+  std::vector<double> lambda_body, mu_body;
   bool built() const { return !rows.empty(); }
 };
 

@@ -5,6 +5,7 @@
 
 #include "solver/diagnostics/energy.hpp"
 #include "solver/diagnostics/guard.hpp"
+#include "solver/diagnostics/health.hpp"
 #include "solver/integrate/integrator.hpp"
 #include "solver/run/summary.hpp"
 
@@ -70,6 +71,9 @@ RunResult run_job(PreparedJob& job, RunObserver* observer) {
   result.history.reserve_rows(static_cast<std::size_t>(job.steps / job.history_every + 2));
   PeakTracker peak;
   std::vector<double> row;
+  // The run's own health check (diagnostics/health.hpp), at the history samples.
+  diagnostics::HealthMonitor health(
+      diagnostics::read_health_limits(job.job.value("health", nlohmann::json::object())));
 
   const auto start = Clock::now();
   auto wall = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
@@ -79,6 +83,7 @@ RunResult run_job(PreparedJob& job, RunObserver* observer) {
   try {
     integrate::initialise(sim);
     peak.update(sim);
+    health.check(sim);
     sample(scene, result.history, row);
     std::int64_t frame = 0;
     if (observer) {
@@ -91,6 +96,7 @@ RunResult run_job(PreparedJob& job, RunObserver* observer) {
       if (s % job.history_every == 0 || s == job.steps) {
         diagnostics::check_health(sim);
         sample(scene, result.history, row);
+        health.check(sim);
         if (observer) observer->on_sample(sim, result.history);
       }
       if (observer && job.snapshot_every > 0 && (s % job.snapshot_every == 0 || s == job.steps)) {
@@ -121,7 +127,12 @@ RunResult run_job(PreparedJob& job, RunObserver* observer) {
     Progress p{result.steps_done, job.steps, sim.time, job.end_s, result.wall_s, 0.0};
     observer->on_progress(p);
   }
+  if (result.status == "completed" && !health.events().empty()) {
+    result.message = "completed with health warnings: " + health.events().front().message;
+  }
   result.summary = make_summary(job, result, peak);
+  result.summary["health"] = health.report();
+  result.summary["warnings"] = health.warnings();
   if (observer) observer->on_finish(job, result);
   return result;
 }

@@ -23,6 +23,7 @@ Scene build_spinning_disk(const SceneInput& in);  // validation.md section 4
 Scene build_bar_impact(const SceneInput& in);     // validation.md section 3
 Scene build_hertz(const SceneInput& in);          // validation.md section 6
 Scene build_rack_pinion(const SceneInput& in);    // the paper's gear case
+Scene build_tension_strip(const SceneInput& in);  // stability study: tensile instability
 
 // Common helpers for builders.
 void add_body(Simulation& sim, const std::string& name, const Material& material);

@@ -6,6 +6,7 @@
 // and may carry a resisting force.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <set>
 #include <sstream>
@@ -108,6 +109,13 @@ Scene build_rack_pinion(const SceneInput& in) {
   L.path = gear::rack_contact_path(pinion);
   L.iso_tip = gear::iso_tooth_form(pinion, pinion.tip_radius());
   L.iso_hpstc = gear::iso_tooth_form(pinion, L.path.hpstc_radius);
+  L.iso_pitch = gear::iso_tooth_form(pinion, pinion.pitch_radius());
+  // ISO 6336-3 form factors for a load anywhere on the active flank, for the
+  // static check, which finds where the load acts from the contact forces.
+  for (int k = 0; k <= 40; ++k) {
+    const double radius = L.form_radius + (L.tip_radius - L.form_radius) * k / 40.0;
+    L.iso_by_radius.push_back(gear::iso_tooth_form(pinion, radius));
+  }
   L.lewis_Y = L.teeth >= 12 ? gear::lewis_form_factor(L.teeth) : 0.0;
 
   Scene scene;
@@ -258,10 +266,26 @@ Scene build_rack_pinion(const SceneInput& in) {
   }
   sim.domain = grown_bounds(p, 4.0 * L.tip_radius);
 
+  // Mesh stiffness (ISO 6336-1) and, for static checks, dynamic relaxation of
+  // the slowest mode: the rack as a mass on the mesh spring along x.
+  L.iso_mesh_stiffness = gear::iso_single_pair_stiffness(pinion, mat_p.E, mat_r.E);
+  double rack_mass = 0.0;
+  for (std::size_t i = rack_body.begin; i < rack_body.end; ++i) rack_mass += p.mass[i];
+  const double k_x = L.iso_mesh_stiffness * std::cos(alpha) * std::cos(alpha);
+  const double omega_mesh = std::sqrt(k_x / rack_mass);
+  L.quasi_static = s.at("quasi_static").get<bool>();
+  if (L.quasi_static) {
+    sim.damping_1_s = omega_mesh;  // damping ratio 1/2 of that mode, heavier for slower ones
+    sim.load_ramp_s = 10.0 * 2.0 * kPi / omega_mesh;
+  }
+
   // --- Bookkeeping per pinion tooth: which particles belong to it, and the
   // particles at its two 30-degree fillet points (ISO 6336-3 critical section).
   const gear::ThirtyDegreePoints t30 = gear::thirty_degree_points(pinion);
-  std::vector<int> tooth_of(p.n, -1);
+  // Particles of no modelled tooth (hub, rack) are marked with a number no
+  // tooth has (teeth are numbered -z..z around the mesh).
+  constexpr int kNoTooth = std::numeric_limits<int>::min();
+  std::vector<int> tooth_of(p.n, kNoTooth);
   std::vector<std::pair<std::size_t, std::size_t>> root_particles;
   for (int k : pinion_teeth) {
     // Generating frame (axis +y) -> gear frame (tooth k) -> world.
@@ -277,6 +301,31 @@ Scene build_rack_pinion(const SceneInput& in) {
     const int k = static_cast<int>(std::lround(ang / pitch_angle));
     for (int m : pinion_teeth) {
       if (((k - m) % L.teeth + L.teeth) % L.teeth == 0) tooth_of[i] = m;
+    }
+  }
+  // Tooth 0's critical section: the particles of the tooth within half a
+  // spacing of the chord between its 30-degree points (one lattice row: the
+  // chord is nearly horizontal for the tooth pointing down at the rack).
+  if (std::find(pinion_teeth.begin(), pinion_teeth.end(), 0) != pinion_teeth.end()) {
+    const Point right = place.pinion.apply(geometry::rotate(t30.right, kPi));
+    const Point left = place.pinion.apply(geometry::rotate(t30.left, kPi));
+    GearLayout::Section& sec = L.root_section;
+    sec.cx = 0.5 * (left.x + right.x);
+    sec.cy = 0.5 * (left.y + right.y);
+    const double len = std::hypot(right.x - left.x, right.y - left.y);
+    sec.ux = (right.x - left.x) / len;
+    sec.uy = (right.y - left.y) / len;
+    sec.width = len;
+    sec.dx = dx;
+    for (std::size_t i = pin_body.begin; i < pin_body.end; ++i) {
+      const double rx = p.x[i] - sec.cx, ry = p.y[i] - sec.cy;
+      const double along = rx * sec.ux + ry * sec.uy, across = -rx * sec.uy + ry * sec.ux;
+      if (tooth_of[i] == 0 && std::abs(across) <= 0.5 * dx && std::abs(along) <= 0.5 * len + dx) {
+        sec.particles.push_back(i);
+      }
+    }
+    for (std::size_t i = pin_body.begin; i < pin_body.end; ++i) {
+      if (tooth_of[i] == 0) L.tooth0_particles.push_back(i);
     }
   }
 
@@ -354,7 +403,7 @@ Scene build_rack_pinion(const SceneInput& in) {
 
   scene.outlines.push_back(to_outline("pinion", 0, pinion_poly));
   scene.outlines.push_back(to_outline("rack", 1, rack_poly));
-  scene.default_end_s = 0.04;
+  scene.default_end_s = L.quasi_static ? 2.0 * sim.load_ramp_s : 0.04;
   scene.default_dt_s = 4e-8;
 
   std::ostringstream why;
@@ -368,29 +417,37 @@ Scene build_rack_pinion(const SceneInput& in) {
     hub += p.motion[i] == 1;
     guided += p.motion[i] == 2;
   }
-  scene.description = {{"pinion",
-                        {{"teeth", L.teeth},
-                         {"modelled_teeth", pinion_teeth},
-                         {"pitch_radius_m", r},
-                         {"base_radius_m", rb},
-                         {"tip_radius_m", L.tip_radius},
-                         {"root_radius_m", L.root_radius},
-                         {"form_radius_m", L.form_radius},
-                         {"undercut", pinion.undercut()},
-                         {"pitch_thickness_m", pinion.pitch_thickness()},
-                         {"deformable_from_radius_m", r_drive},
-                         {"driven_hub_particles", hub}}},
-                       {"rack",
-                        {{"modelled_teeth", rs.teeth},
-                         {"pitch_m", rack.pitch()},
-                         {"back_thickness_m", rs.back_thickness_m},
-                         {"guided_back_particles", guided}}},
-                       {"contact_ratio", L.path.contact_ratio},
-                       {"modelled_teeth_reason", L.selection},
-                       {"mesh_phase", s.at("mesh_phase")},
-                       {"initial_rotation_to_close_play_rad", phase}};
+  scene.description = {
+      {"pinion",
+       {{"teeth", L.teeth},
+        {"modelled_teeth", pinion_teeth},
+        {"pitch_radius_m", r},
+        {"base_radius_m", rb},
+        {"tip_radius_m", L.tip_radius},
+        {"root_radius_m", L.root_radius},
+        {"form_radius_m", L.form_radius},
+        {"undercut", pinion.undercut()},
+        {"pitch_thickness_m", pinion.pitch_thickness()},
+        {"deformable_from_radius_m", r_drive},
+        {"driven_hub_particles", hub}}},
+      {"rack",
+       {{"modelled_teeth", rs.teeth},
+        {"pitch_m", rack.pitch()},
+        {"back_thickness_m", rs.back_thickness_m},
+        {"guided_back_particles", guided}}},
+      {"contact_ratio", L.path.contact_ratio},
+      {"modelled_teeth_reason", L.selection},
+      {"mesh_phase", s.at("mesh_phase")},
+      {"initial_rotation_to_close_play_rad", phase},
+      {"iso_mesh_stiffness_N_per_mm_um", 1e-9 * L.iso_mesh_stiffness},
+      {"rack_mesh_mode_rad_s", omega_mesh},
+      {"quasi_static", L.quasi_static ? nlohmann::json{{"damping_1_s", sim.damping_1_s},
+                                                       {"load_ramp_s", sim.load_ramp_s}}
+                                      : nlohmann::json(false)}};
 
-  scene.analyse = [L](const History& h, const Simulation&) { return analyse_rack_pinion(L, h); };
+  scene.analyse = [L](const History& h, const Simulation& s2) {
+    return analyse_rack_pinion(L, h, s2);
+  };
   return scene;
 }
 

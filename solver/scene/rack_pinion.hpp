@@ -9,6 +9,10 @@
 #include "solver/gear/gear_rating.hpp"
 #include "solver/run/history.hpp"
 
+namespace gearsph {
+struct Simulation;
+}
+
 namespace gearsph::scenes {
 
 struct GearLayout {
@@ -25,9 +29,22 @@ struct GearLayout {
   std::vector<int> rack_teeth;    // modelled rack teeth, numbered from the first
   double end_s = 0.04;
   gear::ContactPath path;
-  gear::IsoToothForm iso_tip, iso_hpstc;
+  gear::IsoToothForm iso_tip, iso_hpstc, iso_pitch;
   double lewis_Y = 0.0;
-  std::string selection;  // how the modelled teeth were chosen, in words
+  double iso_mesh_stiffness = 0.0;  // c' [N/m per m of face width], ISO 6336-1
+  bool quasi_static = false;
+  // ISO 6336-3 critical section of tooth 0 (between its 30-degree points):
+  // the lattice row that lies on it, for the section's bending moment.
+  struct Section {
+    std::vector<std::size_t> particles;
+    double cx = 0, cy = 0;  // chord centre [m]
+    double ux = 1, uy = 0;  // along the chord
+    double width = 0;       // s_Fn [m]
+    double dx = 0;
+  } root_section;
+  std::vector<std::size_t> tooth0_particles;
+  std::vector<gear::IsoToothForm> iso_by_radius;  // form radius to tip, ascending
+  std::string selection;                          // how the modelled teeth were chosen, in words
 };
 
 // Velocity-stability time (docs/gears.md): the earliest t* after which v(t)
@@ -36,6 +53,7 @@ struct GearLayout {
 double velocity_stability_time(const std::vector<double>& t, const std::vector<double>& v,
                                double tolerance);
 
-nlohmann::json analyse_rack_pinion(const GearLayout& layout, const History& h);
+nlohmann::json analyse_rack_pinion(const GearLayout& layout, const History& h,
+                                   const Simulation& final_state);
 
 }  // namespace gearsph::scenes

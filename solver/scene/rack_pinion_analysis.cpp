@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/core/simulation.hpp"
 #include "solver/scene/rack_pinion.hpp"
 
 namespace gearsph::scenes {
@@ -43,7 +44,68 @@ double max_of(const std::vector<double>& v) {
 
 }  // namespace
 
-nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h) {
+namespace {
+
+// Bending moment and normal force carried by tooth 0's critical section in
+// the final state, per unit face width: sum over the section's row of
+// sigma_nn dx and sigma_nn s dx (s along the chord from its centre, n the
+// tooth axis). The nominal bending stress 6 M / s_Fn^2 is what ISO 6336-3's
+// form factor Y_F describes before the stress concentration Y_S; unlike the
+// stress of a single particle at the fillet it does not depend on where the
+// lattice cuts the surface.
+nlohmann::json root_section_loads(const GearLayout::Section& sec, const Simulation& sim) {
+  const Particles& p = sim.particles;
+  const double nx = -sec.uy, ny = sec.ux;
+  double N = 0.0, M = 0.0;
+  for (std::size_t i : sec.particles) {
+    const double sxx = p.sigma_xx(i), syy = p.sigma_yy(i), sxy = p.sigma_xy(i);
+    const double snn = nx * nx * sxx + 2.0 * nx * ny * sxy + ny * ny * syy;
+    const double along = (p.x[i] - sec.cx) * sec.ux + (p.y[i] - sec.cy) * sec.uy;
+    N += snn * sec.dx;
+    M += snn * along * sec.dx;
+  }
+  return {{"particles", sec.particles.size()},
+          {"chord_m", sec.width},
+          {"normal_force_N_per_m", N},
+          {"bending_moment_N", M},
+          {"nominal_bending_stress_Pa", 6.0 * std::abs(M) / (sec.width * sec.width)},
+          {"mean_normal_stress_Pa", N / sec.width}};
+}
+
+// Where the contact load on tooth 0 acts: the contact-force-weighted mean
+// radius of its particles in the final state.
+double tooth0_load_radius(const GearLayout& L, const Simulation& sim) {
+  const Particles& p = sim.particles;
+  double wsum = 0.0, rsum = 0.0;
+  for (std::size_t i : L.tooth0_particles) {
+    const double w = p.mass[i] * std::hypot(p.contact_ax[i], p.contact_ay[i]);
+    wsum += w;
+    rsum += w * std::hypot(p.x[i] - L.cx, p.y[i] - L.cy);
+  }
+  return wsum > 0.0 ? rsum / wsum : 0.0;
+}
+
+// ISO 6336-3 form factors at a load radius, interpolated in the table.
+gear::IsoToothForm iso_at(const GearLayout& L, double radius) {
+  const std::vector<gear::IsoToothForm>& t = L.iso_by_radius;
+  if (radius <= t.front().load_radius) return t.front();
+  for (std::size_t k = 1; k < t.size(); ++k) {
+    if (radius <= t[k].load_radius) {
+      const double w = (radius - t[k - 1].load_radius) / (t[k].load_radius - t[k - 1].load_radius);
+      gear::IsoToothForm f = t[k - 1];
+      f.Y_F += w * (t[k].Y_F - f.Y_F);
+      f.Y_S += w * (t[k].Y_S - f.Y_S);
+      f.load_radius = radius;
+      return f;
+    }
+  }
+  return t.back();
+}
+
+}  // namespace
+
+nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
+                                   const Simulation& final_state) {
   nlohmann::json a;
   const std::vector<double> t = h.column("time_s");
   const double b = L.face_width_m, m = L.module_m;
@@ -98,6 +160,11 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h) {
         {"Y_S", L.iso_hpstc.Y_S},
         {"load_radius_m", L.iso_hpstc.load_radius},
         {"sigma_F0_Pa", ft / (b * m) * L.iso_hpstc.Y_F * L.iso_hpstc.Y_S}}},
+      {"iso_pitch_point",
+       {{"Y_F", L.iso_pitch.Y_F},
+        {"Y_S", L.iso_pitch.Y_S},
+        {"load_radius_m", L.iso_pitch.load_radius},
+        {"sigma_F0_Pa", ft / (b * m) * L.iso_pitch.Y_F * L.iso_pitch.Y_S}}},
       {"s_Fn_m", L.iso_tip.s_Fn},
       {"rho_F_m", L.iso_tip.rho_F}};
 
@@ -141,6 +208,46 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h) {
     // Along the line of action: F_bt = F_t / cos(alpha), delta_n = delta_x cos(alpha).
     const double c = std::cos(L.pressure_angle);
     a["mesh_stiffness_N_per_mm_um"] = L.load_N / (c * c) / (1e3 * b) / (1e6 * std::abs(te_mean));
+  }
+  a["iso_mesh_stiffness_N_per_mm_um"] = 1e-9 * L.iso_mesh_stiffness;
+
+  // Static check (validation.md 7): with the gear held at its starting
+  // position (tooth 0 centred on the pitch point) tooth 0 alone carries the
+  // load, on its flank where the line of action crosses it (about 25 mm for
+  // the paper's pinion, not the pitch point). Root stress at the end of the
+  // relaxation against ISO 6336-3 with the load where the contact forces put
+  // it, and against Lewis (load at the tip, the classic form).
+  if (L.quasi_static && L.load_N > 0 && h.rows() > 0) {
+    const std::size_t last = h.rows() - 1;
+    const double sigma = h.at(last, static_cast<std::size_t>(h.index("root_stress_t0_Pa")));
+    const double tooth_force = h.at(last, static_cast<std::size_t>(h.index("tooth_force_t0_N")));
+    const double lewis = L.lewis_Y > 0 ? L.load_N / (b * m * L.lewis_Y) : 0.0;
+    const double load_radius = tooth0_load_radius(L, final_state);
+    const gear::IsoToothForm form = iso_at(L, load_radius);
+    const double iso = L.load_N / (b * m) * form.Y_F * form.Y_S;
+    const double iso_nominal = L.load_N / (b * m) * form.Y_F;
+    const nlohmann::json section = root_section_loads(L.root_section, final_state);
+    const double bending = section.at("nominal_bending_stress_Pa").get<double>();
+    a["static_check"] = {
+        {"root_section", section},
+        {"nominal_bending_stress_Pa", bending},
+        {"iso_nominal_Pa", iso_nominal},
+        {"nominal_error_vs_iso", (bending - iso_nominal) / iso_nominal},
+        {"nominal_error_vs_lewis", lewis > 0 ? (bending - lewis) / lewis : 0.0},
+        {"root_stress_Pa", sigma},
+        {"tooth0_force_N", tooth_force},
+        {"load_carried_by_tooth0", tooth_force * std::cos(L.pressure_angle) / L.load_N},
+        {"lewis_Pa", lewis},
+        {"load_radius_m", load_radius},
+        {"iso_Y_F_at_load", form.Y_F},
+        {"iso_Y_S_at_load", form.Y_S},
+        {"iso_at_load_Pa", iso},
+        {"error_vs_lewis", lewis > 0 ? (sigma - lewis) / lewis : 0.0},
+        {"error_vs_iso", (sigma - iso) / iso}};
+    if (a.contains("mesh_stiffness_N_per_mm_um")) {
+      a["static_check"]["mesh_stiffness_error_vs_iso"] =
+          a["mesh_stiffness_N_per_mm_um"].get<double>() / (1e-9 * L.iso_mesh_stiffness) - 1.0;
+    }
   }
 
   a["summary_fields"] = {

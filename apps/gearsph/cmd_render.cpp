@@ -1,0 +1,103 @@
+// gearsph render / gearsph plot: pictures of a finished run directory, the
+// same the service draws (GET /jobs/{id}/images), without a server.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "apps/gearsph/cli.hpp"
+#include "apps/gearsph/serve_images.hpp"
+#include "render/plot_image.hpp"
+#include "render/png_io.hpp"
+
+namespace gearsph::cli {
+
+namespace {
+
+std::vector<std::string> split(const std::string& text, char sep) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, sep);) out.push_back(item);
+  return out;
+}
+
+void write_png(const std::string& path, const std::string& bytes) {
+  std::ofstream f(path, std::ios::binary);
+  f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  if (!f) throw std::runtime_error("cannot write " + path);
+}
+
+}  // namespace
+
+int cmd_render(Args& args) {
+  const std::string out = args.option("out").value_or("");
+  server::ImageRequest request;
+  request.field = args.option("field").value_or("von_mises");
+  request.frame = args.integer("frame", -1);
+  if (const auto zoom = args.option("zoom")) {
+    const std::vector<std::string> v = split(*zoom, ',');
+    if (v.size() != 4) throw std::invalid_argument("--zoom takes x0,y0,x1,y1 in metres");
+    request.zoom_m = {std::stod(v[0]), std::stod(v[1]), std::stod(v[2]), std::stod(v[3])};
+  }
+  const std::vector<std::string> pos = args.positional();
+  if (pos.size() != 1) throw std::invalid_argument("render: one run directory expected");
+  const std::string& dir = pos.front();
+  if (out.empty()) throw std::invalid_argument("render: --out FILE.png is required");
+  const server::ImageProvider provider = results_image_provider();
+  if (!provider) throw std::runtime_error("this build has no renderer (OSMesa, HDF5)");
+  const server::ImageResult image = provider(dir, request);
+  if (image.status != 200) {
+    std::fprintf(stderr, "gearsph render: %s\n", image.detail.c_str());
+    return image.status == 500 ? 1 : 2;
+  }
+  write_png(out, image.png);
+  std::printf("wrote %s\n", out.c_str());
+  return 0;
+}
+
+// History columns of DIR/history.csv against time, one series each.
+int cmd_plot(Args& args) {
+  const std::string out = args.option("out").value_or("");
+  const std::vector<std::string> wanted = split(args.option("columns").value_or(""), ',');
+  render::Plot plot;
+  plot.title = args.option("title").value_or("");
+  plot.y_label = args.option("ylabel").value_or("");
+  const double scale = std::stod(args.option("scale").value_or("1"));
+  const std::vector<std::string> pos = args.positional();
+  if (pos.size() != 1) throw std::invalid_argument("plot: one run directory expected");
+  const std::string& dir = pos.front();
+  if (out.empty() || wanted.empty() || wanted.front().empty()) {
+    throw std::invalid_argument("plot: --columns A,B and --out FILE.png are required");
+  }
+  std::ifstream f(dir + "/history.csv");
+  if (!f) throw std::invalid_argument("plot: no history.csv in " + dir);
+  std::string line;
+  std::getline(f, line);
+  const std::vector<std::string> header = split(line, ',');
+  std::vector<std::size_t> index;
+  for (const std::string& w : wanted) {
+    std::size_t k = 0;
+    while (k < header.size() && header[k] != w) ++k;
+    if (k == header.size()) throw std::invalid_argument("plot: history.csv has no column " + w);
+    index.push_back(k);
+    plot.series.push_back({w, {}, {}, {}});
+  }
+  plot.x_label = "time [ms]";
+  while (std::getline(f, line)) {
+    const std::vector<std::string> v = split(line, ',');
+    if (v.size() != header.size()) continue;
+    const double t = 1e3 * std::stod(v[0]);
+    for (std::size_t s = 0; s < index.size(); ++s) {
+      plot.series[s].x.push_back(t);
+      plot.series[s].y.push_back(scale * std::stod(v[index[s]]));
+    }
+  }
+  const std::vector<unsigned char> png = render::render_plot_png(plot);
+  write_png(out, std::string(png.begin(), png.end()));
+  std::printf("wrote %s\n", out.c_str());
+  return 0;
+}
+
+}  // namespace gearsph::cli

@@ -1,0 +1,90 @@
+// gearsph worker: runs jobs from a shared job store on this machine, into a
+// results directory every node (and the API) can read. As many worker
+// processes as there are machines (or cores) may share one store; each claims
+// the oldest queued job, holds it under a lease its heartbeat renews, and
+// records the outcome. SIGTERM / SIGINT: running jobs stop at their next
+// check and go back to the queue.
+#include <signal.h>
+
+#include <cstdio>
+#include <stdexcept>
+#include <thread>
+
+#include "apps/gearsph/cli.hpp"
+#include "server/config.hpp"
+#include "server/event_hub.hpp"
+#include "server/job_store.hpp"
+#include "server/worker_pool.hpp"
+
+namespace gearsph::cli {
+
+namespace {
+
+double seconds_value(Args& args, const std::string& name, double fallback) {
+  const auto v = args.option(name);
+  if (!v) return fallback;
+  try {
+    std::size_t used = 0;
+    const double s = std::stod(*v, &used);
+    if (used != v->size() || !(s > 0) || s > 86400) throw std::invalid_argument("");
+    return s;
+  } catch (const std::exception&) {
+    throw std::invalid_argument("--" + name + " takes seconds (> 0), not '" + *v + "'");
+  }
+}
+
+}  // namespace
+
+int cmd_worker(Args& args) {
+  const auto store_location = args.option("store");
+  const auto results = args.option("results");
+  if (!store_location || !results) {
+    throw std::invalid_argument("usage: gearsph worker --store URL --results DIR");
+  }
+  server::WorkerPoolOptions o;
+  o.workers = args.integer("workers", 1);
+  o.threads_per_job = args.integer("threads-per-job", 0);
+  o.max_attempts = args.integer("max-attempts", o.max_attempts);
+  const double lease_s = seconds_value(args, "lease", 30.0);
+  const double poll_s = seconds_value(args, "poll", 0.5);
+  if (!args.positional().empty()) throw std::invalid_argument("worker takes no file arguments");
+  if (o.workers < 1 || o.threads_per_job < 0 || o.max_attempts < 1) {
+    throw std::invalid_argument("--workers, --threads-per-job and --max-attempts are positive");
+  }
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  if (o.threads_per_job == 0) o.threads_per_job = std::max(1, cores / o.workers);
+  o.jobs_dir = *results;
+  o.holder = {server::process_name(), lease_s};
+  o.poll_interval = std::chrono::milliseconds(static_cast<long long>(poll_s * 1000));
+  // The heartbeat renews the leases three times per lease.
+  o.flush_interval =
+      std::min(std::chrono::milliseconds(1000),
+               std::chrono::milliseconds(static_cast<long long>(lease_s * 1000 / 3)));
+  o.log_name = "gearsph worker " + o.holder.worker;
+
+  // SIGINT / SIGTERM are taken by sigwait below, in no other thread.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  std::filesystem::create_directories(o.jobs_dir);
+  auto store = server::open_job_store(*store_location);
+  server::EventHub hub;  // nobody listens here: the API reads progress from the store
+  server::WorkerPool pool(*store, hub, o);
+  pool.start();
+  std::printf("gearsph worker: %s ready (%d worker%s x %d thread%s, lease %.3g s, results %s)\n",
+              o.holder.worker.c_str(), o.workers, o.workers == 1 ? "" : "s", o.threads_per_job,
+              o.threads_per_job == 1 ? "" : "s", lease_s, o.jobs_dir.string().c_str());
+  std::fflush(stdout);
+  int sig = 0;
+  sigwait(&signals, &sig);
+  std::fprintf(stderr, "%s: %s: stopping\n", o.log_name.c_str(),
+               sig == SIGINT ? "SIGINT" : "SIGTERM");
+  pool.stop();
+  std::fprintf(stderr, "%s: stopped\n", o.log_name.c_str());
+  return 0;
+}
+
+}  // namespace gearsph::cli

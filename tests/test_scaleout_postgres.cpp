@@ -1,0 +1,333 @@
+// Many machines on one PostgreSQL job store, on loopback: a real PostgreSQL
+// server (tests/scaleout/postgres.sh), one API process that runs no jobs
+// (`gearsph serve --store ... --no-local-workers`) and `gearsph worker`
+// processes sharing a results directory. What is checked: jobs spread over
+// the workers, no job runs twice unless its worker died, a worker killed
+// with SIGKILL mid-job has that job finished by another, the API serves
+// results and events of jobs it did not run, and a database restart loses
+// nothing.
+#include <random>
+
+#include "server/documents.hpp"
+#include "server/job_store.hpp"
+#include "tests/scaleout/support.hpp"
+
+namespace gearsph::server::testing {
+namespace {
+
+class ScaleOutPostgres : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string out;
+    if (shell("ls /usr/lib/postgresql/*/bin/initdb", &out) != 0) {
+      GTEST_SKIP() << "PostgreSQL server binaries are missing (/usr/lib/postgresql/*/bin/initdb); "
+                      "apt-get install postgresql";
+    }
+    pg_ = std::make_unique<Engine>(script("postgres.sh"));
+    ASSERT_TRUE(pg_->started()) << pg_->output();
+    uri_ = pg_->last_line();
+    ASSERT_EQ(uri_.rfind("postgresql://", 0), 0u) << pg_->output();
+  }
+
+  // Leases of 2 s: a killed worker's job is taken over quickly, yet a busy
+  // machine does not let a live worker's lease run out (renewed every 0.67 s).
+  std::unique_ptr<WorkerProcess> worker(int number, std::vector<std::string> extra = {},
+                                        double lease_s = 2) {
+    std::vector<std::string> args = {"--store",
+                                     uri_,
+                                     "--results",
+                                     results_.path().string(),
+                                     "--threads-per-job",
+                                     "1",
+                                     "--lease",
+                                     std::to_string(lease_s),
+                                     "--poll",
+                                     "0.2"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return std::make_unique<WorkerProcess>(args, logs_.path(), number);
+  }
+  std::vector<std::string> api_args(std::vector<std::string> extra = {}, double lease_s = 2) {
+    std::vector<std::string> args = {"--store",
+                                     uri_,
+                                     "--no-local-workers",
+                                     "--results",
+                                     results_.path().string(),
+                                     "--lease",
+                                     std::to_string(lease_s)};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  }
+
+  std::unique_ptr<Engine> pg_;
+  std::string uri_;
+  TempDir results_;  // the results directory all "nodes" share
+  TempDir logs_;
+};
+
+TEST_F(ScaleOutPostgres, StoreClaimsEachJobOnceAcrossConnections) {
+  auto store = open_job_store(uri_);
+  constexpr int kJobs = 60;
+  for (int i = 0; i < kJobs; ++i) {
+    NewJob j;
+    j.id = new_id();
+    j.name = std::to_string(i);
+    j.job_json = "{}";
+    store->submit(j, std::nullopt);
+  }
+  std::mutex mutex;
+  std::vector<std::string> claimed;
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      auto own = open_job_store(uri_);  // another connection, as another machine
+      while (auto job = own->claim(Holder{"w" + std::to_string(t), 60})) {
+        std::lock_guard<std::mutex> lock(mutex);
+        claimed.push_back(job->id);
+      }
+    });
+  }
+  for (auto& t : threads) t.join();
+  EXPECT_EQ(claimed.size(), static_cast<std::size_t>(kJobs));
+  EXPECT_EQ(std::set<std::string>(claimed.begin(), claimed.end()).size(),
+            static_cast<std::size_t>(kJobs));
+  EXPECT_EQ(store->count_by_status().at("running"), kJobs);
+  // Opening again finds the schema current and migrates nothing.
+  open_job_store(uri_);
+  PgDatabase db(uri_);
+  EXPECT_EQ(db.value("SELECT version FROM schema_version"), "1");
+  EXPECT_EQ(db.value("SELECT COUNT(*) FROM schema_version"), "1");
+}
+
+// Leases on either store: renewed, expired and reclaimed, fenced off from
+// the holder that lost them, and reported lost when the job was dismissed.
+void expect_leases_work(JobStore& store) {
+  NewJob j;
+  j.id = new_id();
+  j.name = "leased";
+  j.job_json = "{}";
+  store.submit(j, std::nullopt);
+  // a's lease is short enough to expire during the test, long enough that a
+  // busy machine does not let it expire between two statements.
+  const Holder a{"a", 1.5}, b{"b", 60};
+  const auto expire = [] { std::this_thread::sleep_for(std::chrono::milliseconds(2000)); };
+  ASSERT_TRUE(store.claim(a));
+  EXPECT_TRUE(store.renew(a, {j.id}).empty());
+  EXPECT_EQ(store.renew(b, {j.id}), std::vector<std::string>{j.id});  // not b's
+  EXPECT_TRUE(store.reclaim_expired(3).requeued.empty());             // just renewed
+  expire();
+  EXPECT_EQ(store.reclaim_expired(3).requeued, std::vector<std::string>{j.id});
+  EXPECT_NE(store.job(j.id)->message.find("its worker a stopped renewing its lease"),
+            std::string::npos)
+      << store.job(j.id)->message;
+  const auto again = store.claim(b);
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->attempts, 2);
+  EXPECT_EQ(again->worker, "b");
+  // The first holder is fenced off: it can neither renew nor finish.
+  EXPECT_EQ(store.renew(a, {j.id}), std::vector<std::string>{j.id});
+  EXPECT_FALSE(store.finish(j.id, "successful", "done", {j.id, 1, 1, 1, 0, 100}, "a"));
+  EXPECT_FALSE(store.requeue(j.id, "stopping", "a"));
+  EXPECT_TRUE(store.finish(j.id, "successful", "done", {j.id, 1, 1, 1, 0, 100}, "b"));
+  EXPECT_EQ(store.job(j.id)->status, "successful");
+  // Dismissed while running: the holder learns it at its next heartbeat.
+  NewJob k = j;
+  k.id = new_id();
+  store.submit(k, std::nullopt);
+  ASSERT_TRUE(store.claim(b));
+  store.dismiss(k.id);
+  EXPECT_EQ(store.renew(b, {k.id}), std::vector<std::string>{k.id});
+  // An expired job started max_attempts times fails instead.
+  NewJob m = j;
+  m.id = new_id();
+  store.submit(m, std::nullopt);
+  ASSERT_TRUE(store.claim(a));
+  expire();
+  EXPECT_EQ(store.reclaim_expired(1).failed, std::vector<std::string>{m.id});
+  EXPECT_EQ(store.job(m.id)->status, "failed");
+  // The single server's own claims carry no lease: never reclaimed, and
+  // recovered at its start-up instead.
+  NewJob n = j;
+  n.id = new_id();
+  store.submit(n, std::nullopt);
+  ASSERT_TRUE(store.claim());
+  EXPECT_TRUE(store.reclaim_expired(3).requeued.empty());
+  EXPECT_EQ(store.recover(3).requeued, std::vector<std::string>{n.id});
+}
+
+TEST_F(ScaleOutPostgres, LeasesRenewExpireAndFence) {
+  auto store = open_job_store(uri_);
+  expect_leases_work(*store);
+}
+
+// The same on SQLite (`--store sqlite:PATH`: worker processes on one machine).
+TEST(ScaleOutSqlite, LeasesRenewExpireAndFence) {
+  TempDir dir;
+  auto store = open_job_store("sqlite:" + (dir.path() / "jobs.db").string());
+  expect_leases_work(*store);
+}
+
+TEST_F(ScaleOutPostgres, WorkersShareTheQueueAndFinishAKilledWorkersJob) {
+  ServerProcess api(api_args());
+  std::vector<std::unique_ptr<WorkerProcess>> workers;
+  for (int i = 0; i < 3; ++i) workers.push_back(worker(i));
+  auto c = api.client();
+
+  // A long job first: some worker takes it; that worker is killed mid-run.
+  // About 4 s of one core: well beyond the moment it is killed.
+  const std::string long_job = submit(c, tiny_job(1.0));
+  std::vector<std::string> ids;
+  for (int i = 0; i < 12; ++i) ids.push_back(submit(c, tiny_job(0.02)));
+  // Progress reaches the API through the store only.
+  wait_for(c, long_job, [](const json& s) { return s.at("step").get<int>() > 0; });
+  PgDatabase db(uri_);
+  const std::string holder = db.value("SELECT worker FROM jobs WHERE id = '" + long_job + "'");
+  int killed = -1;
+  for (int i = 0; i < 3; ++i) {
+    if (workers[i]->name() == holder) killed = i;
+  }
+  ASSERT_NE(killed, -1) << "no worker is named " << holder;
+  EXPECT_EQ(workers[killed]->stop(SIGKILL), 128 + SIGKILL);
+
+  ids.push_back(long_job);
+  for (const std::string& id : ids) {
+    const json s = wait_final(c, id);
+    EXPECT_EQ(s.at("status"), "successful") << s.dump();
+    // Served by the API from the shared results directory.
+    EXPECT_EQ(c.get("/jobs/" + id + "/results").status, 200u) << id;
+  }
+  const json l = c.get("/jobs/" + long_job).json();
+  EXPECT_EQ(l.at("attempts"), 2) << l.dump();
+  EXPECT_NE(db.value("SELECT worker FROM jobs WHERE id = '" + long_job + "'"), holder);
+
+  // From the workers' own logs: every job ran once, except the long one,
+  // whose first run died with its worker; each worker ran some jobs.
+  std::vector<std::string> started;
+  for (int i = 0; i < 3; ++i) {
+    const auto mine = workers[i]->started();
+    EXPECT_FALSE(mine.empty()) << "worker " << i << " ran nothing:\n" << workers[i]->log();
+    started.insert(started.end(), mine.begin(), mine.end());
+  }
+  const auto runs = count(started);
+  for (const std::string& id : ids) {
+    EXPECT_EQ(runs.count(id) ? runs.at(id) : 0, id == long_job ? 2 : 1) << id;
+    EXPECT_EQ(db.value("SELECT attempts FROM jobs WHERE id = '" + id + "'"),
+              id == long_job ? "2" : "1");
+  }
+  EXPECT_EQ(count(workers[killed]->started()).count(long_job), 1u);
+  EXPECT_TRUE(count(workers[killed]->finished()).count(long_job) == 0);
+  // Whoever noticed first (the API's watcher or an idle worker) put it back.
+  std::string logs = api.log();
+  for (const auto& w : workers) logs += w->log();
+  EXPECT_NE(logs.find("job " + long_job + ": its worker stopped renewing its lease"),
+            std::string::npos)
+      << logs;
+}
+
+TEST_F(ScaleOutPostgres, RandomKillsLoseNoJobAndRunNoneTwice) {
+  std::random_device device;
+  const unsigned seed = std::getenv("GEARSPH_SCALEOUT_SEED")
+                            ? std::stoul(std::getenv("GEARSPH_SCALEOUT_SEED"))
+                            : device();
+  std::mt19937 random(seed);
+  SCOPED_TRACE("GEARSPH_SCALEOUT_SEED=" + std::to_string(seed));
+  ServerProcess api(api_args({"--max-attempts", "20"}));
+  std::vector<std::unique_ptr<WorkerProcess>> workers;
+  for (int i = 0; i < 3; ++i) workers.push_back(worker(i, {"--max-attempts", "20"}));
+  auto c = api.client();
+  std::vector<std::string> ids;
+  std::uniform_real_distribution<double> length(0.005, 0.12);
+  for (int i = 0; i < 14; ++i) ids.push_back(submit(c, tiny_job(length(random))));
+
+  // Three times: wait a random moment, SIGKILL a random live worker, start
+  // a replacement.
+  std::vector<int> killed;
+  std::uniform_int_distribution<int> pause_ms(200, 1500);
+  for (int round = 0; round < 3; ++round) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(pause_ms(random)));
+    std::vector<int> alive;
+    for (int i = 0; i < static_cast<int>(workers.size()); ++i) {
+      if (workers[i]->alive()) alive.push_back(i);
+    }
+    const int victim =
+        alive[std::uniform_int_distribution<std::size_t>(0, alive.size() - 1)(random)];
+    workers[victim]->stop(SIGKILL);
+    killed.push_back(victim);
+    workers.push_back(worker(static_cast<int>(workers.size()), {"--max-attempts", "20"}));
+  }
+  for (const std::string& id : ids) {
+    const json s = wait_final(c, id, std::chrono::seconds(150));
+    EXPECT_EQ(s.at("status"), "successful") << s.dump();
+  }
+  // A run that a killed worker started and did not finish was interrupted;
+  // every job ran exactly once more than it was interrupted, and the store
+  // counted exactly those runs. The store names who finished each job: a
+  // worker killed after recording the outcome, before logging it, finished
+  // its run.
+  PgDatabase db(uri_);
+  std::map<std::string, std::string> finisher;
+  for (const auto& row : db.query("SELECT id, worker FROM jobs")) finisher[row[0]] = row[1];
+  std::map<std::string, int> runs, interrupted;
+  for (std::size_t i = 0; i < workers.size(); ++i) {
+    const auto started = count(workers[i]->started());
+    for (const auto& [id, n] : started) runs[id] += n;
+    if (std::find(killed.begin(), killed.end(), static_cast<int>(i)) != killed.end()) {
+      const auto done = count(workers[i]->finished());
+      for (const auto& [id, n] : started) {
+        int unfinished = n - (done.count(id) ? done.at(id) : 0);
+        if (unfinished > 0 && finisher[id] == workers[i]->name()) --unfinished;
+        interrupted[id] += unfinished;
+      }
+    }
+  }
+  for (const std::string& id : ids) {
+    EXPECT_EQ(runs[id], 1 + interrupted[id]) << id;
+    EXPECT_EQ(db.value("SELECT attempts FROM jobs WHERE id = '" + id + "'"),
+              std::to_string(runs[id]))
+        << id;
+    EXPECT_TRUE(fs::exists(results_.path() / id / "summary.json")) << id;
+  }
+}
+
+TEST_F(ScaleOutPostgres, EventsOfJobsRunElsewhereReachTheApi) {
+  ServerProcess api(api_args());
+  auto w = worker(0);
+  auto c = api.client();
+  const std::string id = submit(c, tiny_job(0.05));
+  std::vector<std::string> statuses;
+  auto ec = api.client(std::chrono::seconds(60));
+  const ClientResponse head = ec.events("/jobs/" + id + "/events", [&](const SseEvent& e) {
+    if (e.event == "status") statuses.push_back(json::parse(e.data).at("status"));
+    return true;
+  });
+  EXPECT_EQ(head.status, 200u);
+  ASSERT_FALSE(statuses.empty());
+  EXPECT_EQ(statuses.back(), "successful");  // the stream ended after the final status
+  EXPECT_EQ(c.get("/jobs/" + id).json().at("status"), "successful");
+}
+
+TEST_F(ScaleOutPostgres, DatabaseRestartLosesNothing) {
+  ServerProcess api(api_args({}, 10));
+  auto w0 = worker(0, {}, 10);
+  auto w1 = worker(1, {}, 10);
+  auto c = api.client();
+  std::vector<std::string> ids;
+  for (int i = 0; i < 6; ++i) ids.push_back(submit(c, tiny_job(0.05)));
+  wait_for(c, ids[0], [](const json& s) { return s.at("status") != "accepted"; });
+  ASSERT_EQ(pg_->run("restart"), 0);
+  // Submitting works again once the database is back.
+  const auto deadline = Clock::now() + std::chrono::seconds(30);
+  ClientResponse r;
+  while (Clock::now() < deadline) {
+    r = c.post_json("/jobs", tiny_job(0.01).dump());
+    if (r.status == 201) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  ASSERT_EQ(r.status, 201u) << r.body;
+  ids.push_back(r.json().at("jobID"));
+  for (const std::string& id : ids) {
+    EXPECT_EQ(wait_final(c, id).at("status"), "successful") << id;
+  }
+}
+
+}  // namespace
+}  // namespace gearsph::server::testing

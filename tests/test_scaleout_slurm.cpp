@@ -1,0 +1,208 @@
+// Slurm as the engine that runs the jobs (`gearsph serve --dispatch slurm`):
+// first the dispatcher's reading of Slurm's commands, against output the
+// real commands printed (slurm-wlm 22.05, accounting off as in
+// tests/scaleout/slurm.sh, and sacct's documented --parsable2 form); then a
+// real single-node Slurm on loopback (tests/scaleout/slurm.sh) running jobs
+// submitted through the API to completion, a cancellation, and the server
+// killed and restarted while its Slurm job runs.
+#include <cstdlib>
+
+#include "server/slurm_dispatch.hpp"
+#include "tests/scaleout/support.hpp"
+
+namespace gearsph::server::testing {
+namespace {
+
+TEST(ScaleOutSlurmFormats, SbatchParsable) {
+  EXPECT_EQ(parse_sbatch_parsable("1\n"), "1");
+  EXPECT_EQ(parse_sbatch_parsable("4242;gearsph-test\n"), "4242");  // with a cluster name
+  EXPECT_EQ(parse_sbatch_parsable("sbatch: warning: something\n17\n"), "17");
+  EXPECT_FALSE(parse_sbatch_parsable("sbatch: error: Batch job submission failed\n"));
+  EXPECT_FALSE(parse_sbatch_parsable(""));
+}
+
+TEST(ScaleOutSlurmFormats, SqueueLines) {
+  // squeue --noheader --states=all --format=%i|%j|%T|%r, as printed by slurm-wlm 22.05.8.
+  const std::string out =
+      "3|gearsph-test1|CANCELLED|Priority\n"
+      "1|gearsph-test1|RUNNING|None\n"
+      "2|gearsph-test1|PENDING|Priority\n"
+      "4|gearsph-0b5e8d3c-6c1f-4f57-9a3e-1f0c2a9d4e71|COMPLETED|None\n";
+  const auto e = parse_squeue(out);
+  ASSERT_EQ(e.size(), 4u);
+  EXPECT_EQ(e[0].job_id, "3");
+  EXPECT_EQ(e[0].state, "CANCELLED");
+  EXPECT_EQ(e[2].reason, "Priority");
+  EXPECT_EQ(e[3].name, "gearsph-0b5e8d3c-6c1f-4f57-9a3e-1f0c2a9d4e71");
+  EXPECT_TRUE(parse_squeue("").empty());
+  EXPECT_TRUE(parse_squeue("slurm_load_jobs error: Unable to contact slurm controller\n").empty());
+}
+
+TEST(ScaleOutSlurmFormats, SacctLines) {
+  // sacct --noheader --parsable2 --allocations --format=JobID,State,ExitCode
+  const auto rows = parse_sacct("12|COMPLETED|0:0\n13|CANCELLED by 0|0:15\n14|FAILED|3:0\n");
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[1].state, "CANCELLED");
+  EXPECT_EQ(rows[2].exit_code, 3);
+  // With accounting off sacct prints only this (and exits 1).
+  EXPECT_TRUE(parse_sacct("Slurm accounting storage is disabled\n").empty());
+}
+
+TEST(ScaleOutSlurmFormats, StatesMapToOurs) {
+  EXPECT_EQ(slurm_phase("PENDING"), SlurmPhase::queued);
+  EXPECT_EQ(slurm_phase("REQUEUED"), SlurmPhase::queued);
+  EXPECT_EQ(slurm_phase("RUNNING"), SlurmPhase::running);
+  EXPECT_EQ(slurm_phase("COMPLETING"), SlurmPhase::running);
+  EXPECT_EQ(slurm_phase("SUSPENDED"), SlurmPhase::running);
+  for (const char* s : {"COMPLETED", "FAILED", "CANCELLED", "TIMEOUT", "NODE_FAIL", "PREEMPTED",
+                        "OUT_OF_MEMORY", "BOOT_FAIL", "DEADLINE"}) {
+    EXPECT_EQ(slurm_phase(s), SlurmPhase::ended) << s;
+  }
+  EXPECT_EQ(slurm_phase("SOMETHING_NEW"), SlurmPhase::unknown);
+}
+
+TEST(ScaleOutSlurmFormats, ProgressOfGearsphRun) {
+  // What `gearsph run` prints on a non-terminal stderr.
+  const auto p = parse_run_progress(
+      "gearsph run: job: plate, 315 particles, 3973 steps of 1.26e-05 s (...), 1 threads\n"
+      "[ 12.0%] step 477/3973  t = 0.006 s  wall 0.1 s  ETA 0.8 s\n"
+      "[ 48.0%] step 1907/3973  t = 0.024 s  wall 0.5 s  ETA 0.5 s\n");
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->step, 1907);
+  EXPECT_EQ(p->steps, 3973);
+  EXPECT_DOUBLE_EQ(p->time_s, 0.024);
+  EXPECT_FALSE(parse_run_progress("gearsph run: starting\n"));
+}
+
+TEST(ScaleOutSlurmFormats, BatchScriptRunsGearsphWithTheAllocatedCpus) {
+  SlurmOptions o;
+  o.gearsph = "/opt/gear sph/gearsph";
+  o.cpus_per_job = 4;
+  const std::string s = slurm_batch_script("abc", "/shared/jobs/abc", o);
+  EXPECT_EQ(s.rfind("#!/bin/sh\n", 0), 0u);
+  EXPECT_NE(s.find("#SBATCH --job-name=gearsph-abc\n"), std::string::npos);
+  EXPECT_NE(s.find("#SBATCH --cpus-per-task=4\n"), std::string::npos);
+  EXPECT_NE(s.find("#SBATCH --output=/shared/jobs/abc/.slurm/output.txt\n"), std::string::npos);
+  EXPECT_NE(s.find("'/opt/gear sph/gearsph' run '/shared/jobs/abc/.slurm/job.json' --out "
+                   "'/shared/jobs/abc' --threads \"$threads\""),
+            std::string::npos)
+      << s;
+  EXPECT_NE(s.find("threads=${SLURM_CPUS_PER_TASK:-"), std::string::npos);
+  // The script itself is valid sh.
+  TempDir dir;
+  std::ofstream(dir.path() / "job.sh") << s;
+  EXPECT_EQ(shell("sh -n " + (dir.path() / "job.sh").string()), 0);
+}
+
+// A single-node Slurm for each test, and the API with --dispatch slurm.
+class ScaleOutSlurm : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    for (const char* b : {"slurmctld", "slurmd", "munged", "sbatch", "squeue", "scancel"}) {
+      if (shell(std::string("command -v ") + b) != 0) {
+        GTEST_SKIP() << b << " is missing: apt-get install slurm-wlm munge";
+      }
+    }
+    if (::geteuid() != 0) {
+      GTEST_SKIP() << "a single-node Slurm needs root here (slurmd starts jobs as their owners, "
+                      "munged runs as the munge user); run the tests as root";
+    }
+    slurm_ = std::make_unique<Engine>(script("slurm.sh"));
+    ASSERT_TRUE(slurm_->started()) << slurm_->output();
+    const std::string line = slurm_->last_line();
+    ASSERT_EQ(line.rfind("SLURM_CONF=", 0), 0u) << slurm_->output();
+    // The server and the Slurm commands find this cluster through SLURM_CONF.
+    ::setenv("SLURM_CONF", line.substr(11).c_str(), 1);
+  }
+  void TearDown() override { ::unsetenv("SLURM_CONF"); }
+
+  static std::vector<SlurmQueueEntry> queue() {
+    const CommandResult r =
+        run_command({"squeue", "--noheader", "--states=all", "--format=%i|%j|%T|%r"});
+    return parse_squeue(r.out);
+  }
+  static std::optional<SlurmQueueEntry> slurm_job_of(const std::string& id) {
+    for (const SlurmQueueEntry& e : queue()) {
+      if (e.name == "gearsph-" + id) return e;
+    }
+    return std::nullopt;
+  }
+  static std::string state_of(const std::string& id) {
+    const auto e = slurm_job_of(id);
+    return e ? e->state : "(not in squeue)";
+  }
+
+  std::unique_ptr<Engine> slurm_;
+};
+
+TEST_F(ScaleOutSlurm, SubmittedJobsRunToCompletion) {
+  ServerProcess api({"--dispatch", "slurm", "--threads-per-job", "1"});
+  auto c = api.client();
+  std::vector<std::string> ids;
+  for (int i = 0; i < 3; ++i) ids.push_back(submit(c, tiny_job(0.01)));
+  for (const std::string& id : ids) {
+    const json s = wait_final(c, id);
+    EXPECT_EQ(s.at("status"), "successful") << s.dump() << api.log();
+    EXPECT_NE(s.at("message").get<std::string>().find("(Slurm job "), std::string::npos)
+        << s.dump();
+    EXPECT_EQ(s.at("attempts"), 1);
+    const ClientResponse r = c.get("/jobs/" + id + "/results");
+    EXPECT_EQ(r.status, 200u) << r.body;
+    // One Slurm job per simulation, named after it, ended with status 0.
+    const auto e = slurm_job_of(id);
+    ASSERT_TRUE(e) << id;
+    EXPECT_EQ(e->state, "COMPLETED");
+    EXPECT_EQ(slurp(api.data() / "jobs" / id / ".slurm" / "exit"), "0\n");
+    EXPECT_NE(slurp(api.data() / "jobs" / id / ".slurm" / "output.txt").find("gearsph run:"),
+              std::string::npos);
+  }
+  expect_consistent_store(api.data());
+}
+
+TEST_F(ScaleOutSlurm, DismissCancelsTheSlurmJob) {
+  ServerProcess api({"--dispatch", "slurm", "--threads-per-job", "1"});
+  auto c = api.client();
+  const std::string id = submit(c, tiny_job(20.0));
+  const json running = wait_for(c, id, [](const json& s) { return s.at("status") == "running"; });
+  ASSERT_EQ(running.at("status"), "running") << running.dump() << api.log();
+  ASSERT_EQ(state_of(id), "RUNNING");
+  ASSERT_EQ(c.request("DELETE", "/jobs/" + id).status, 200u);
+  const json s = wait_for(c, id, [](const json& d) {
+    return d.at("message").get<std::string>().find("was cancelled") != std::string::npos;
+  });
+  EXPECT_EQ(s.at("status"), "dismissed") << s.dump();
+  const auto deadline = Clock::now() + std::chrono::seconds(30);
+  std::string state;
+  while (Clock::now() < deadline) {
+    state = state_of(id);
+    if (state == "CANCELLED") break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_EQ(state, "CANCELLED");
+  EXPECT_FALSE(fs::exists(api.data() / "jobs" / id / "summary.json"));
+}
+
+TEST_F(ScaleOutSlurm, ServerRestartKeepsTrackOfSubmittedJobs) {
+  ServerProcess api({"--dispatch", "slurm", "--threads-per-job", "1"});
+  auto c = api.client();
+  // About 4 s of one core: the server sees it running before it ends.
+  const std::string id = submit(c, tiny_job(1.0));
+  const json running = wait_for(c, id, [](const json& s) { return s.at("status") != "accepted"; });
+  ASSERT_EQ(running.at("status"), "running") << running.dump() << api.log();
+  EXPECT_EQ(api.stop(SIGKILL), 128 + SIGKILL);
+  // The Slurm job runs on without the server and ends.
+  const auto deadline = Clock::now() + std::chrono::seconds(120);
+  while (Clock::now() < deadline && state_of(id) != "COMPLETED") {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  ASSERT_EQ(state_of(id), "COMPLETED");
+  api.start();
+  auto c2 = api.client();
+  const json s = wait_final(c2, id);
+  EXPECT_EQ(s.at("status"), "successful") << s.dump() << api.log();
+  EXPECT_EQ(s.at("attempts"), 1);  // tracked, not run again
+  EXPECT_EQ(c2.get("/jobs/" + id + "/results").status, 200u);
+}
+
+}  // namespace
+}  // namespace gearsph::server::testing

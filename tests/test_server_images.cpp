@@ -1,0 +1,129 @@
+// GET /jobs/{id}/images/{field}.png over real HTTP, in a build with the
+// renderer (without it the endpoint answers 501, see test_server_api.cpp):
+// every frame, including the initial state whose stress is zero everywhere,
+// the fields, the zoom window, the refusals, and the cache.
+#ifdef GEARSPH_WITH_RENDER
+
+#include "tests/test_server_support.hpp"
+
+namespace gearsph::server::testing {
+namespace {
+
+// Width and height from a PNG's IHDR chunk; {0, 0} if it is not a PNG.
+std::pair<std::uint32_t, std::uint32_t> png_size(const std::string& png) {
+  static const std::string signature = "\x89PNG\r\n\x1a\n";
+  if (png.size() < 24 || png.compare(0, 8, signature) != 0 || png.compare(12, 4, "IHDR") != 0) {
+    return {0, 0};
+  }
+  const auto be32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    for (std::size_t k = 0; k < 4; ++k) v = (v << 8) | static_cast<unsigned char>(png[at + k]);
+    return v;
+  };
+  return {be32(16), be32(20)};
+}
+
+class ServerImages : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    server_ = new ServerProcess({"--threads-per-job", "1"});
+    auto c = server_->client();
+    json job = tiny_job();
+    job["output"] = {{"frames", 4}};
+    id_ = new std::string(submit(c, job));
+    const json done = wait_final(c, *id_, std::chrono::seconds(300));
+    ASSERT_EQ(done.at("status"), "successful") << done.dump();
+  }
+  static void TearDownTestSuite() {
+    delete server_;
+    delete id_;
+    server_ = nullptr;
+    id_ = nullptr;
+  }
+  static std::string image(const std::string& query) {
+    return "/jobs/" + *id_ + "/images/" + query;
+  }
+  // Snapshots in results.h5, as results.xmf lists them.
+  static int frame_count(HttpClient& c) {
+    const std::string xmf = c.get("/jobs/" + *id_ + "/files/results.xmf").body;
+    int n = 0;
+    for (auto at = xmf.find("<Time Value="); at != std::string::npos;
+         at = xmf.find("<Time Value=", at + 1)) {
+      ++n;
+    }
+    return n;
+  }
+  static ServerProcess* server_;
+  static std::string* id_;
+};
+ServerProcess* ServerImages::server_ = nullptr;
+std::string* ServerImages::id_ = nullptr;
+
+TEST_F(ServerImages, EveryFrameIncludingTheUnstressedInitialState) {
+  auto c = server_->client(std::chrono::seconds(120));
+  // Frame 0 is the initial state: von Mises stress zero everywhere.
+  const ClientResponse first = c.get(image("von_mises.png?frame=0"));
+  ASSERT_EQ(first.status, 200u) << first.body.substr(0, 300);
+  EXPECT_EQ(first.header("Content-Type"), "image/png");
+  EXPECT_EQ(png_size(first.body), std::make_pair(1280u, 800u));
+  // Without a frame: the last one.
+  const int frames = frame_count(c);
+  ASSERT_GE(frames, 5);  // 4 requested, plus the initial state
+  const ClientResponse last = c.get(image("von_mises.png"));
+  ASSERT_EQ(last.status, 200u) << last.body.substr(0, 300);
+  const ClientResponse final_frame =
+      c.get(image("von_mises.png?frame=" + std::to_string(frames - 1)));
+  ASSERT_EQ(final_frame.status, 200u) << final_frame.body.substr(0, 300);
+  EXPECT_TRUE(last.body == final_frame.body);
+  EXPECT_FALSE(first.body == last.body);
+  for (const char* field :
+       {"velocity", "displacement", "pressure", "stress_xy", "density", "body"}) {
+    const ClientResponse r = c.get(image(std::string(field) + ".png?frame=0"));
+    EXPECT_EQ(r.status, 200u) << field << ": " << r.body.substr(0, 300);
+    EXPECT_EQ(png_size(r.body), std::make_pair(1280u, 800u)) << field;
+  }
+}
+
+TEST_F(ServerImages, ZoomShowsAWindow) {
+  auto c = server_->client(std::chrono::seconds(120));
+  const ClientResponse whole = c.get(image("von_mises.png?frame=2"));
+  const ClientResponse zoomed = c.get(image("von_mises.png?frame=2&zoom=0,0,0.02,0.01"));
+  ASSERT_EQ(whole.status, 200u) << whole.body.substr(0, 300);
+  ASSERT_EQ(zoomed.status, 200u) << zoomed.body.substr(0, 300);
+  EXPECT_EQ(png_size(zoomed.body), std::make_pair(1280u, 800u));
+  EXPECT_FALSE(whole.body == zoomed.body);
+}
+
+TEST_F(ServerImages, RefusalsNameWhatExists) {
+  auto c = server_->client(std::chrono::seconds(120));
+  const int frames = frame_count(c);
+  const ClientResponse past = c.get(image("von_mises.png?frame=" + std::to_string(frames)));
+  EXPECT_EQ(past.status, 404u);
+  EXPECT_NE(past.json().at("detail").get<std::string>().find("0 to " + std::to_string(frames - 1)),
+            std::string::npos)
+      << past.body;
+  const ClientResponse unknown = c.get(image("temperature.png"));
+  EXPECT_EQ(unknown.status, 400u);
+  EXPECT_NE(unknown.json().at("detail").get<std::string>().find("von_mises"), std::string::npos)
+      << unknown.body;
+  EXPECT_EQ(c.get(image("von_mises.png?frame=x")).status, 400u);
+  EXPECT_EQ(c.get(image("von_mises.png?zoom=1,1,0,0")).status, 400u);
+  EXPECT_EQ(c.get(image("a..b.png")).status, 404u);
+  EXPECT_EQ(c.get("/jobs/00000000-0000-0000-0000-000000000000/images/von_mises.png").status, 404u);
+}
+
+TEST_F(ServerImages, RenderedImagesAreCachedInTheJobDirectory) {
+  auto c = server_->client(std::chrono::seconds(120));
+  const ClientResponse r = c.get(image("velocity.png?frame=1"));
+  ASSERT_EQ(r.status, 200u) << r.body;
+  const fs::path cached = server_->data() / "jobs" / *id_ / "image-velocity-frame1.png";
+  ASSERT_TRUE(fs::exists(cached));
+  EXPECT_TRUE(slurp(cached) == r.body);
+  // Served from the cache the second time: the same bytes.
+  EXPECT_TRUE(c.get(image("velocity.png?frame=1")).body == r.body);
+}
+
+}  // namespace
+}  // namespace gearsph::server::testing
+
+#endif  // GEARSPH_WITH_RENDER

@@ -1,0 +1,206 @@
+// POST /preview over real HTTP: the scene a job would build (bodies,
+// outlines, modelled teeth, particles, steps) and the run-time estimate,
+// the same refusals as POST /jobs, and nothing stored.
+#include <cmath>
+
+#include "tests/test_server_support.hpp"
+
+namespace gearsph::server::testing {
+namespace {
+
+const json kPaperCase = {{"scene", {{"type", "rack_pinion"}}}};
+
+class ServerPreview : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { server_ = new ServerProcess({"--threads-per-job", "1"}); }
+  static void TearDownTestSuite() {
+    delete server_;
+    server_ = nullptr;
+  }
+  static ServerProcess* server_;
+};
+ServerProcess* ServerPreview::server_ = nullptr;
+
+TEST_F(ServerPreview, PaperCaseGeometryAgreesWithSubmission) {
+  auto c = server_->client();
+  const ClientResponse r = c.post_json("/preview", kPaperCase.dump());
+  ASSERT_EQ(r.status, 200u) << r.body;
+  EXPECT_EQ(r.header("Content-Type"), "application/json");
+  const json p = r.json();
+  EXPECT_EQ(p.at("scene"), "rack_pinion");
+  EXPECT_TRUE(p.at("accepted").get<bool>());
+  EXPECT_TRUE(p.at("errors").empty());
+
+  // Bodies: pinion and rack, their counts adding up to the total.
+  ASSERT_EQ(p.at("bodies").size(), 2u);
+  EXPECT_EQ(p.at("bodies")[0].at("name"), "pinion");
+  EXPECT_EQ(p.at("bodies")[1].at("name"), "rack");
+  std::int64_t sum = 0;
+  for (const json& b : p.at("bodies")) {
+    EXPECT_EQ(b.at("free").get<std::int64_t>() + b.at("driven").get<std::int64_t>(),
+              b.at("particles").get<std::int64_t>());
+    EXPECT_GT(b.at("driven").get<std::int64_t>(), 0);  // hub ring, guided rack back
+    EXPECT_DOUBLE_EQ(b.at("E_Pa").get<double>(), 1.73e11);
+    sum += b.at("particles").get<std::int64_t>();
+  }
+  const auto n = p.at("particles").get<std::int64_t>();
+  EXPECT_EQ(sum, n);
+  EXPECT_GT(n, 100);
+
+  // The particles themselves, one entry each, inside the bounds.
+  const json& pts = p.at("points");
+  ASSERT_TRUE(pts.is_object());
+  for (const char* k : {"x", "y", "body", "driven"}) {
+    EXPECT_EQ(pts.at(k).size(), static_cast<std::size_t>(n)) << k;
+  }
+  const json& bounds = p.at("bounds_m");
+  for (std::size_t i = 0; i < pts.at("x").size(); ++i) {
+    const double x = pts.at("x")[i], y = pts.at("y")[i];
+    ASSERT_TRUE(x >= bounds[0].get<double>() - 1e-6 && x <= bounds[2].get<double>() + 1e-6);
+    ASSERT_TRUE(y >= bounds[1].get<double>() - 1e-6 && y <= bounds[3].get<double>() + 1e-6);
+  }
+
+  // Outlines of both bodies, and the modelled teeth the scene chose.
+  std::set<std::string> outlined;
+  for (const json& o : p.at("outlines")) {
+    EXPECT_GE(o.at("points").size(), 3u);
+    if (o.at("body").is_string()) outlined.insert(o.at("body").get<std::string>());
+  }
+  EXPECT_TRUE(outlined.count("pinion") && outlined.count("rack")) << p.at("outlines").dump();
+  EXPECT_FALSE(p.at("model").at("pinion").at("modelled_teeth").empty());
+  EXPECT_GT(p.at("model").at("rack").at("modelled_teeth").get<int>(), 0);
+
+  // The paper's time span and step.
+  EXPECT_DOUBLE_EQ(p.at("end_s").get<double>(), 0.04);
+  EXPECT_DOUBLE_EQ(p.at("dt_s").get<double>(), 4e-8);
+  EXPECT_LE(p.at("dt_s").get<double>(), p.at("dt_limit_s").get<double>());
+  const auto steps = p.at("steps").get<std::int64_t>();
+  EXPECT_EQ(steps, std::llround(0.04 / 4e-8));
+  EXPECT_DOUBLE_EQ(p.at("particle_steps").get<double>(), double(n) * double(steps));
+  EXPECT_EQ(p.at("job").at("scene").at("pinion").at("teeth"), 12);
+
+  // The same counts as the server's admission of the same job.
+  const ClientResponse s = c.post_json("/jobs", kPaperCase.dump());
+  ASSERT_EQ(s.status, 201u) << s.body;
+  EXPECT_EQ(s.json().at("particles").get<std::int64_t>(), n);
+  EXPECT_EQ(s.json().at("steps").get<std::int64_t>(), steps);
+  EXPECT_EQ(c.request("DELETE", "/jobs/" + s.json().at("jobID").get<std::string>()).status, 200u);
+}
+
+TEST_F(ServerPreview, ParametersChangeTheGeometry) {
+  auto c = server_->client();
+  json bigger = kPaperCase;
+  bigger["scene"]["pinion"] = {{"teeth", 20}};
+  bigger["discretization"] = {{"spacing_mm", 0.5}};
+  const json a = c.post_json("/preview", kPaperCase.dump()).json();
+  const ClientResponse r = c.post_json("/preview", bigger.dump());
+  ASSERT_EQ(r.status, 200u) << r.body;
+  const json b = r.json();
+  EXPECT_DOUBLE_EQ(b.at("spacing_m").get<double>(), 0.5e-3);
+  EXPECT_DOUBLE_EQ(b.at("model").at("pinion").at("pitch_radius_m").get<double>(), 0.04);
+  EXPECT_GT(b.at("particles").get<std::int64_t>(), 3 * a.at("particles").get<std::int64_t>());
+}
+
+TEST_F(ServerPreview, FallbackEstimateOnAServerWithoutFinishedJobs) {
+  ServerProcess fresh({"--threads-per-job", "1"});
+  auto c = fresh.client();
+  const json p = c.post_json("/preview", kPaperCase.dump()).json();
+  const json& rt = p.at("run_time");
+  EXPECT_EQ(rt.at("basis"), "fallback");
+  EXPECT_EQ(rt.at("jobs_measured"), 0);
+  EXPECT_DOUBLE_EQ(rt.at("particle_steps_per_s").get<double>(), 5e4);
+  EXPECT_DOUBLE_EQ(rt.at("wall_s").get<double>(), p.at("particle_steps").get<double>() / 5e4);
+  EXPECT_NE(rt.at("note").get<std::string>().find("estimate"), std::string::npos);
+  // A preview stores nothing.
+  EXPECT_EQ(c.get("/jobs").json().at("jobs").size(), 0u);
+}
+
+TEST_F(ServerPreview, EstimateFromFinishedJobs) {
+  ServerProcess fresh({"--threads-per-job", "1"});
+  auto c = fresh.client();
+  json job = kPaperCase;
+  job["time"] = {{"end_s", 2e-5}};
+  job["output"] = {{"frames", 2}};
+  const std::string id = submit(c, job);
+  ASSERT_FALSE(id.empty());
+  const json done = wait_final(c, id, std::chrono::seconds(600));
+  ASSERT_EQ(done.at("status"), "successful") << done.dump();
+  const json rt = c.post_json("/preview", kPaperCase.dump()).json().at("run_time");
+  const double wall = done.at("wall_s").get<double>();
+  if (wall >= 1.0) {
+    // The job's own speed: particles x steps / wall time.
+    const double speed = done.at("particles").get<double>() * done.at("steps").get<double>() / wall;
+    EXPECT_EQ(rt.at("basis"), "measured");
+    EXPECT_EQ(rt.at("jobs_measured"), 1);
+    EXPECT_NEAR(rt.at("particle_steps_per_s").get<double>(), speed, 1e-6 * speed);
+  } else {
+    // Too short to measure a speed from: mostly start-up.
+    EXPECT_EQ(rt.at("basis"), "fallback");
+  }
+}
+
+TEST_F(ServerPreview, InvalidJobsGetTheirProblemsAtTheFields) {
+  auto c = server_->client();
+  json bad = kPaperCase;
+  bad["scene"]["pinion"] = {{"teeth", 3}, {"module_mm", -1}};
+  // The preview answers (200) with the problems; POST /jobs refuses (400)
+  // with the same pointers.
+  const ClientResponse r = c.post_json("/preview", bad.dump());
+  ASSERT_EQ(r.status, 200u) << r.body;
+  const json p = r.json();
+  EXPECT_FALSE(p.at("valid").get<bool>());
+  EXPECT_FALSE(p.at("accepted").get<bool>());
+  EXPECT_EQ(p.at("type"), "urn:gearsph:problem:invalid-job");
+  EXPECT_FALSE(p.contains("outlines"));
+  std::set<std::string> pointers;
+  for (const json& e : p.at("errors")) {
+    pointers.insert(e.at("pointer").get<std::string>());
+    EXPECT_FALSE(e.at("detail").get<std::string>().empty());
+  }
+  EXPECT_TRUE(pointers.count("/scene/pinion/teeth")) << r.body;
+  EXPECT_TRUE(pointers.count("/scene/pinion/module_mm")) << r.body;
+
+  const ClientResponse s = c.post_json("/jobs", bad.dump());
+  ASSERT_EQ(s.status, 400u) << s.body;
+  std::set<std::string> refused;
+  const json refusal = s.json();  // kept: a loop over a temporary's member would dangle
+  for (const json& e : refusal.at("errors")) refused.insert(e.at("pointer").get<std::string>());
+  EXPECT_EQ(refused, pointers);
+
+  // Requests that are not a JSON job at all are errors.
+  EXPECT_EQ(c.post_json("/preview", "{\"scene\": ").status, 400u);
+  EXPECT_EQ(c.request("POST", "/preview", "{}", {{"Content-Type", "text/plain"}}).status, 415u);
+  EXPECT_EQ(c.get("/preview").status, 405u);
+}
+
+TEST_F(ServerPreview, FarTooManyParticlesAreRefusedBeforeBuilding) {
+  auto c = server_->client();
+  json huge = kPaperCase;
+  huge["discretization"] = {{"spacing_mm", 0.001}};
+  const ClientResponse r = c.post_json("/preview", huge.dump());
+  ASSERT_EQ(r.status, 200u) << r.body;
+  const json p = r.json();
+  EXPECT_TRUE(p.at("valid").get<bool>());
+  EXPECT_FALSE(p.at("accepted").get<bool>());
+  EXPECT_EQ(p.at("errors")[0].at("pointer"), "/discretization");
+  EXPECT_GT(p.at("estimate").at("particles_at_least").get<double>(), 5e6);
+  EXPECT_FALSE(p.contains("outlines"));
+}
+
+TEST_F(ServerPreview, JobsOverTheLimitsShowGeometryAndSayWhy) {
+  ServerProcess small({"--threads-per-job", "1", "--max-steps", "1000"});
+  auto c = small.client();
+  const ClientResponse r = c.post_json("/preview", kPaperCase.dump());
+  ASSERT_EQ(r.status, 200u) << r.body;
+  const json p = r.json();
+  EXPECT_FALSE(p.at("accepted").get<bool>());
+  ASSERT_FALSE(p.at("errors").empty());
+  EXPECT_EQ(p.at("errors")[0].at("pointer"), "/time/end_s") << p.at("errors").dump();
+  EXPECT_FALSE(p.at("outlines").empty());
+  EXPECT_EQ(p.at("limits").at("steps"), 1000);
+  // POST /jobs refuses the same job.
+  EXPECT_EQ(c.post_json("/jobs", kPaperCase.dump()).status, 422u);
+}
+
+}  // namespace
+}  // namespace gearsph::server::testing

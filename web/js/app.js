@@ -1,0 +1,90 @@
+// The dashboard: a hash router over four views and one shared event stream.
+import { get } from "./api.js";
+import { h } from "./format.js";
+import { events } from "./events.js";
+import { submitView } from "./submit.js";
+import { jobsView } from "./jobs.js";
+import { resultView } from "./result.js";
+import { compareView } from "./compare.js";
+
+const main = document.getElementById("main");
+let current = null; // {dispose()}
+
+function route() {
+  const hash = location.hash.replace(/^#/, "") || "/submit";
+  const [path, query = ""] = hash.split("?");
+  const params = new URLSearchParams(query);
+  const parts = path.split("/").filter(Boolean);
+  let view = "submit";
+  let render;
+  if (parts[0] === "jobs" && parts[1]) {
+    view = "jobs";
+    render = () => resultView(main, decodeURIComponent(parts[1]), params);
+  } else if (parts[0] === "jobs") {
+    view = "jobs";
+    render = () => jobsView(main, params);
+  } else if (parts[0] === "compare") {
+    view = "compare";
+    render = () => compareView(main, params);
+  } else {
+    render = () => submitView(main, params);
+  }
+  for (const a of document.querySelectorAll(".tabs a")) {
+    if (a.dataset.view === view) a.setAttribute("aria-current", "page");
+    else a.removeAttribute("aria-current");
+  }
+  current?.dispose?.();
+  main.replaceChildren();
+  current = render();
+  const title = { submit: "New job", jobs: "Jobs", compare: "Compare" }[view];
+  document.title = `${title} · GearSPH`;
+}
+
+export function toast(message, ms = 5000) {
+  const t = document.getElementById("toast");
+  t.textContent = message;
+  t.hidden = false;
+  clearTimeout(toast.timer);
+  toast.timer = setTimeout(() => (t.hidden = true), ms);
+}
+
+// The server's identity once, then whether the live stream is connected.
+let identity = null; // null until /health answers, "" if it failed
+async function health() {
+  try {
+    const hl = await get("/health");
+    identity = `gearsph ${hl.version} · ${hl.workers} worker${hl.workers === 1 ? "" : "s"} × ${hl.threads_per_job} thread${hl.threads_per_job === 1 ? "" : "s"}`;
+  } catch {
+    identity = "";
+  }
+  showConnection();
+}
+
+function showConnection() {
+  const el = document.getElementById("server-state");
+  if (identity === null && events.connected !== false) return; // still "connecting…"
+  const down = events.connected === false || !identity;
+  el.classList.toggle("down", down);
+  el.title = down ? "" : "live updates connected";
+  el.replaceChildren(h("span", { class: "dot" }),
+    events.connected === false ? "server unreachable: reconnecting…" : identity || "server unreachable");
+}
+
+function runningCount() {
+  const badge = document.getElementById("running-count");
+  const update = (id, kind) => {
+    if (kind === "connection") showConnection();
+    const n = events.activeCount();
+    badge.hidden = n === 0;
+    badge.textContent = String(n);
+    badge.title = `${n} job${n === 1 ? "" : "s"} queued or running`;
+  };
+  events.subscribe(update);
+  update();
+}
+
+window.addEventListener("hashchange", route);
+route();
+health();
+events.start();
+runningCount();
