@@ -2,6 +2,7 @@
 // same the service draws (GET /jobs/{id}/images), without a server.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -33,6 +34,7 @@ void write_png(const std::string& path, const std::string& bytes) {
 
 int cmd_render(Args& args) {
   const std::string out = args.option("out").value_or("");
+  const std::string frames = args.option("frames").value_or("");
   server::ImageRequest request;
   request.field = args.option("field").value_or("von_mises");
   request.frame = args.integer("frame", -1);
@@ -42,19 +44,46 @@ int cmd_render(Args& args) {
     request.zoom_m = {std::stod(v[0]), std::stod(v[1]), std::stod(v[2]), std::stod(v[3])};
   }
   const std::vector<std::string> pos = args.positional();
-  if (pos.size() != 1) throw std::invalid_argument("render: one run directory expected");
-  const std::string& dir = pos.front();
-  if (out.empty()) throw std::invalid_argument("render: --out FILE.png is required");
+  if (pos.size() != 1) throw std::invalid_argument("render: one run directory or results.h5");
+  // A run directory, or its results.h5.
+  std::filesystem::path dir = pos.front();
+  if (dir.extension() == ".h5") dir = dir.parent_path().empty() ? "." : dir.parent_path();
+  if (out.empty()) throw std::invalid_argument("render: --out is required");
+  if (!frames.empty() && frames != "all") {
+    throw std::invalid_argument("render: --frames takes 'all' (or use --frame N)");
+  }
   const server::ImageProvider provider = results_image_provider();
   if (!provider) throw std::runtime_error("this build has no renderer (OSMesa, HDF5)");
-  const server::ImageResult image = provider(dir, request);
-  if (image.status != 200) {
-    std::fprintf(stderr, "gearsph render: %s\n", image.detail.c_str());
-    return image.status == 500 ? 1 : 2;
+  if (frames.empty()) {
+    const server::ImageResult image = provider(dir, request);
+    if (image.status != 200) {
+      std::fprintf(stderr, "gearsph render: %s\n", image.detail.c_str());
+      return image.status == 500 ? 1 : 2;
+    }
+    write_png(out, image.png);
+    std::printf("wrote %s\n", out.c_str());
+    return 0;
   }
-  write_png(out, image.png);
-  std::printf("wrote %s\n", out.c_str());
-  return 0;
+  // --frames all: OUT is a directory of FIELD_NNNN.png, frame by frame until
+  // the results have no more.
+  std::filesystem::create_directories(out);
+  int written = 0;
+  for (request.frame = 0;; ++request.frame) {
+    const server::ImageResult image = provider(dir, request);
+    if (image.status == 404) break;
+    if (image.status != 200) {
+      std::fprintf(stderr, "gearsph render: frame %lld: %s\n",
+                   static_cast<long long>(request.frame), image.detail.c_str());
+      return image.status == 500 ? 1 : 2;
+    }
+    char name[64];
+    std::snprintf(name, sizeof name, "/%s_%04lld.png", request.field.c_str(),
+                  static_cast<long long>(request.frame));
+    write_png(out + name, image.png);
+    ++written;
+  }
+  std::printf("wrote %d frames to %s\n", written, out.c_str());
+  return written > 0 ? 0 : 2;
 }
 
 // History columns of DIR/history.csv against time, one series each.

@@ -34,8 +34,9 @@ usage:
       print the job schema (JSON Schema draft-07)
   gearsph geometry JOB.json --out DIR
       the scene's outlines and particles as SVG and CSV, without running it
-  gearsph render RUN_DIR --out FILE.png [--field von_mises] [--frame K] [--zoom x0,y0,x1,y1]
-      a frame of a finished run as the service draws it (frame -1: the last)
+  gearsph render RUN_DIR|results.h5 --out FILE.png [--field von_mises] [--frame K] [--zoom x0,y0,x1,y1]
+      a frame of a run as the service draws it (frame -1: the last); --frames all
+      --out DIR writes every frame
   gearsph plot RUN_DIR --columns A,B --out FILE.png [--title T] [--ylabel L] [--scale S]
       history.csv columns against time
   gearsph serve [--port 8080] [--bind 127.0.0.1] [--data DIR] [--workers N] [--threads-per-job M] [--token-file F] [--cors-origin ORIGIN] [--web DIR]
