@@ -224,8 +224,12 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
     const double lewis = L.lewis_Y > 0 ? L.load_N / (b * m * L.lewis_Y) : 0.0;
     const double load_radius = tooth0_load_radius(L, final_state);
     const gear::IsoToothForm form = iso_at(L, load_radius);
-    const double iso = L.load_N / (b * m) * form.Y_F * form.Y_S;
-    const double iso_nominal = L.load_N / (b * m) * form.Y_F;
+    // ISO's Ft is the load on the one tooth: tooth 0's share of the rack
+    // force (all of it while no neighbour touches; under a large load the
+    // deflection brings the next pair into contact).
+    const double ft0 = tooth_force * std::cos(L.pressure_angle);
+    const double iso = ft0 / (b * m) * form.Y_F * form.Y_S;
+    const double iso_nominal = ft0 / (b * m) * form.Y_F;
     const nlohmann::json section = root_section_loads(L.root_section, final_state);
     const double bending = section.at("nominal_bending_stress_Pa").get<double>();
     a["static_check"] = {

@@ -137,7 +137,7 @@ json hertz_job(bool quick) {
 }
 
 // The paper's pair held at its starting position (no rotation, no rack
-// speed) while a 10 kN rack force is ramped on and the motion relaxed: the
+// speed) while a 1 kN rack force is ramped on and the motion relaxed: the
 // static tooth load of validation.md section 7.
 json gear_static_job() {
   return {{"name", "gear-static"},
@@ -145,7 +145,7 @@ json gear_static_job() {
            {{"type", "rack_pinion"},
             {"quasi_static", true},
             {"pinion", {{"omega_rad_s", 0.0}}},
-            {"rack", {{"velocity_m_s", 0.0}, {"load_N", 10000.0}}}}}};
+            {"rack", {{"velocity_m_s", 0.0}, {"load_N", 1000.0}}}}}};
 }
 
 }  // namespace
