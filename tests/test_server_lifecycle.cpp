@@ -13,7 +13,7 @@ TEST(ServerLifecycle, SigkillMidRunRequeuesAndCompletes) {
   auto c = server.client();
   const std::string finished = submit(c, tiny_job());
   ASSERT_EQ(wait_final(c, finished).at("status"), "successful");
-  const std::string interrupted = submit(c, tiny_job(0.12));
+  const std::string interrupted = submit(c, tiny_job(0.5));  // running when the kill lands
   const std::string queued = submit(c, tiny_job());
   wait_for(c, interrupted, [](const json& s) { return s.at("step").get<int>() > 0; });
   ASSERT_EQ(c.get("/jobs/" + queued).json().at("status"), "accepted");
@@ -58,7 +58,9 @@ TEST(ServerLifecycle, SigkillAfterMaxAttemptsFails) {
 TEST(ServerLifecycle, SigtermStopsGracefullyAndRequeues) {
   ServerProcess server({"--workers", "1", "--threads-per-job", "1"});
   auto c = server.client();
-  const std::string id = submit(c, tiny_job(0.12));
+  // Long enough to be running whenever SIGTERM lands (0.12 s of simulated
+  // time finished in 0.7 s on an idle machine); the stop ends it anyway.
+  const std::string id = submit(c, tiny_job(20.0));
   wait_for(c, id, [](const json& s) { return s.at("step").get<int>() > 0; });
   // An open event stream ends when the server stops.
   std::thread watcher([&] {
