@@ -100,6 +100,15 @@ std::vector<JobIssue> over_limits(const JobEstimate& e, const Limits& limits) {
   return issues;
 }
 
+std::string too_many_particles(double lower_bound, const Limits& limits) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf,
+                "the job has at least %.3g particles; this server takes at most %lld: use a "
+                "coarser spacing",
+                lower_bound, static_cast<long long>(limits.max_particles));
+  return buf;
+}
+
 double particles_lower_bound(const nlohmann::json& job) {
   if (!job.contains("discretization") || !job.contains("scene")) return 0.0;
   const auto& d = job["discretization"];

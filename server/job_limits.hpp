@@ -31,6 +31,8 @@ std::vector<JobIssue> over_limits(const JobEstimate& e, const Limits& limits);
 // particles is refused before building them exhausts memory. 0 when the
 // job gives no spacing (the scene then picks a modest one).
 double particles_lower_bound(const nlohmann::json& job);
+// The sentence that refuses a job whose lower bound is over the limit.
+std::string too_many_particles(double lower_bound, const Limits& limits);
 
 nlohmann::json limits_json(const Limits& limits);
 

@@ -162,11 +162,7 @@ Response preview(Services& s, Request& req) {
     const nlohmann::json job = validate_job(raw);
     const double lower = particles_lower_bound(job);
     if (lower > double(limits.max_particles)) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf,
-                    "the job has at least %.3g particles; this server takes at most %lld: use a "
-                    "coarser spacing",
-                    lower, static_cast<long long>(limits.max_particles));
+      const std::string buf = too_many_particles(lower, limits);
       // Too large to build here: the reason, without geometry.
       return json_response(http::status::ok,
                            {{"accepted", false},

@@ -110,11 +110,7 @@ std::variant<NewJob, Refusal> admit_job(const Services& services, const nlohmann
     const nlohmann::json job = validate_job(raw);
     const double lower = particles_lower_bound(job);
     if (lower > double(limits.max_particles)) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf,
-                    "the job has at least %.3g particles; this server takes at most %lld: use a "
-                    "coarser spacing",
-                    lower, static_cast<long long>(limits.max_particles));
+      const std::string buf = too_many_particles(lower, limits);
       Refusal r{http::status::unprocessable_entity,
                 problem::kJobTooLarge,
                 "Job too large",
