@@ -16,22 +16,8 @@ cmd=${1:?usage: slurm.sh start|stop DIR}
 dir=${2:?usage: slurm.sh start|stop DIR}
 script=$(cd "$(dirname "$0")" && pwd)/$(basename "$0")
 
-# With GEARSPH_ENGINE_OWNER=PID (the tests set it), a watchdog stops the
-# engine once that process is gone, so a test killed by a timeout leaves no
-# daemon behind.
-start_watchdog() {
-  [ -n "${GEARSPH_ENGINE_OWNER:-}" ] || return 0
-  setsid sh -c 'while kill -0 "$1" 2>/dev/null; do sleep 1; done; exec "$2" stop "$3"' \
-    watchdog "$GEARSPH_ENGINE_OWNER" "$script" "$dir" </dev/null >/dev/null 2>&1 &
-  echo $! >"$dir/watchdog.pid"
-}
-stop_watchdog() {
-  [ -s "$dir/watchdog.pid" ] || return 0
-  local pid
-  pid=$(cat "$dir/watchdog.pid")
-  rm -f "$dir/watchdog.pid"
-  [ "$pid" = "$$" ] || kill "$pid" 2>/dev/null || true
-}
+# The engine watchdog (start_watchdog, stop_watchdog) needs $script and $dir.
+source "$(dirname "$script")/watchdog.sh"
 
 stop_pidfile() {
   local file=$1
