@@ -196,8 +196,10 @@ void WorkerPool::run(const JobRecord& job) {
     // A fresh directory: nothing of an interrupted attempt is mistaken for a result.
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
+    // threads_per_job is this worker's share of the cores: a small scene
+    // takes fewer (threads_for), a job's own "threads" is kept.
     PreparedJob prepared =
-        prepare_job(nlohmann::json::parse(job.job_json), options_.threads_per_job);
+        prepare_job(nlohmann::json::parse(job.job_json), 0, options_.threads_per_job);
     steps = prepared.steps;
     Observer observer(*this, *rj);
     ExecuteOptions eo;

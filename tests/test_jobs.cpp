@@ -39,6 +39,23 @@ std::string describe(const std::vector<JobIssue>& issues) {
 
 const json kPlate = {{"scene", {{"type", "plate"}}}, {"time", {{"end_s", 0.001}}}};
 
+TEST(Jobs, ThreadsFollowTheSceneSizeUnlessSet) {
+  // One thread per kParticlesPerThread, at least one, at most the cap.
+  EXPECT_EQ(threads_for(918, 2), 1);
+  EXPECT_EQ(threads_for(2 * kParticlesPerThread, 2), 2);
+  EXPECT_EQ(threads_for(2 * kParticlesPerThread, 1), 1);
+  EXPECT_EQ(threads_for(100 * kParticlesPerThread, 8), 8);
+  EXPECT_EQ(threads_for(0, 0), 1);
+  // The paper's case (918 particles): one thread unless asked.
+  const json gear = {{"scene", {{"type", "rack_pinion"}}}};
+  EXPECT_EQ(prepare_job(gear, 0, 2).scene.sim.threads, 1);
+  EXPECT_EQ(prepare_job(gear, 2).scene.sim.threads, 2);  // the command line's --threads
+  json own = gear;
+  own["threads"] = 2;
+  EXPECT_EQ(prepare_job(own, 0, 4).scene.sim.threads, 2);
+  EXPECT_EQ(prepare_job(own, 0, 1).scene.sim.threads, 1);  // a server's share caps it
+}
+
 TEST(Jobs, SchemaIsValidDraft07ForOurValidator) {
   EXPECT_NO_THROW(jsonschema::Validator{job_schema()});
   EXPECT_EQ(job_schema().at("$schema"), "http://json-schema.org/draft-07/schema#");

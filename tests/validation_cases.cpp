@@ -7,6 +7,13 @@
 #include "solver/validation/cases.hpp"
 
 namespace gearsph {
+namespace validation {
+// ctest lists a case by its id, not by its bytes.
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << c.id;
+}
+}  // namespace validation
+
 namespace {
 
 class ValidationCase : public ::testing::TestWithParam<validation::Case> {};
@@ -15,7 +22,7 @@ TEST_P(ValidationCase, MatchesItsReference) {
   const validation::Case& c = GetParam();
   if (!c.disagreement.empty())
     GTEST_SKIP() << c.id << " is reported, not claimed: " << c.disagreement;
-  PreparedJob job = prepare_job(c.job, 2);
+  PreparedJob job = prepare_job(c.job);  // threads by size: one for these
   const RunResult result = run_job(job);
   ASSERT_EQ(result.status, "completed") << result.message;
   ASSERT_GE(result.steps_done, 100) << "a validation run must resolve its time span";

@@ -70,10 +70,11 @@ int cmd_plot(Args& args);
 #endif
 
 int main(int argc, char** argv) {
-  // OpenMP threads that spin at barriers waste their core when the machine
-  // is shared: 2-thread runs were 10-70x slower under load
-  // (docs/speed-accuracy.md). Sleeping threads cost little when it is not;
-  // a policy the user set is kept. Read by the runtime at its first use.
+  // OpenMP threads that spin at barriers starve each other when the cores
+  // are shared: 2-thread runs were 8-70x slower (docs/speed-accuracy.md,
+  // Threads). Sleeping costs a wake-up per barrier instead, which small
+  // scenes avoid by running on one thread (threads_for). A policy the user
+  // set is kept. Read by the runtime at its first use.
   setenv("OMP_WAIT_POLICY", "passive", 0);
 #ifdef GEARSPH_WITH_RESULTS
   gearsph::results::register_outputs();

@@ -11,14 +11,24 @@ struct Motion {
     Free,      // integrated from forces
     Fixed,     // v = 0, x = x0
     Velocity,  // v = (vx, vy), x = x0 + v t
-    Rotation,  // rigid rotation about (cx, cy) at omega (counter-clockwise positive)
+    Rotation,  // rigid rotation about (cx, cy) at omega (counter-clockwise positive),
+               // held or, torque_driven, following the group's torque balance
     GuidedX,   // v_y = 0, x free (a particle on a horizontal guide)
   };
   Kind kind = Kind::Free;
   std::string name = "free";
   double vx = 0.0, vy = 0.0;  // Velocity
   double cx = 0.0, cy = 0.0;  // Rotation centre [m]
-  double omega = 0.0;         // Rotation rate [rad/s]
+  double omega = 0.0;         // Rotation rate [rad/s]; the initial one when torque-driven
+  double angle = 0.0;         // Rotation: turned since t = 0 [rad]
+  // A torque-driven rotation is a rigid body: omega and angle are state,
+  // advanced from I dω/dt = T + the moment of the forces on the group
+  // (integrate/motion.cpp). Per unit thickness, like the particles' masses.
+  bool torque_driven = false;
+  double torque = 0.0;            // applied at full load ramp [N m / m]
+  double attached_inertia = 0.0;  // rigidly attached but not modelled [kg m^2 / m]
+  double group_inertia = 0.0;     // of the group's particles about (cx, cy) [kg m^2 / m]
+  double alpha = 0.0;             // angular acceleration at the last kick [rad/s^2]
 
   static Motion free() { return {}; }
   static Motion fixed(std::string n) { return {Kind::Fixed, std::move(n)}; }
@@ -33,6 +43,14 @@ struct Motion {
     m.cx = cx;
     m.cy = cy;
     m.omega = omega;
+    return m;
+  }
+  static Motion torque_rotation(std::string n, double cx, double cy, double omega0, double torque,
+                                double attached_inertia) {
+    Motion m = rotation(std::move(n), cx, cy, omega0);
+    m.torque_driven = true;
+    m.torque = torque;
+    m.attached_inertia = attached_inertia;
     return m;
   }
   static Motion guided_x(std::string n) { return {Kind::GuidedX, std::move(n)}; }

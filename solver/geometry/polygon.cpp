@@ -38,6 +38,15 @@ double signed_area(const Polygon& poly) {
   return 0.5 * twice;
 }
 
+double polar_moment(const Polygon& poly) {
+  double twelve = 0.0;
+  for (std::size_t i = 0, n = poly.size(); i < n; ++i) {
+    const Point a = poly[i], b = poly[(i + 1) % n];
+    twelve += cross(a, b) * (a.x * a.x + a.x * b.x + b.x * b.x + a.y * a.y + a.y * b.y + b.y * b.y);
+  }
+  return twelve / 12.0;
+}
+
 double perimeter(const Polygon& poly) {
   double length = 0.0;
   for (std::size_t i = 0, n = poly.size(); i < n; ++i) length += norm(poly[(i + 1) % n] - poly[i]);

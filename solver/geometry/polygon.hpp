@@ -64,6 +64,9 @@ Box bounding_box(const std::vector<Point>& points);
 // Shoelace formula; positive for a CCW ring.
 double signed_area(const Polygon& poly);
 double perimeter(const Polygon& poly);
+// Polar second moment of the enclosed area about the origin, ∫(x² + y²) dA:
+// Green's theorem over each edge (positive for a CCW ring).
+double polar_moment(const Polygon& poly);
 // Shortest distance from p to the segments of a polyline (closed: also the
 // segment from the last vertex back to the first).
 double distance_to_polyline(const std::vector<Point>& line, Point p, bool closed);

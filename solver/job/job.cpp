@@ -143,7 +143,13 @@ nlohmann::json validate_job(const nlohmann::json& job) {
   return validator().apply_defaults(job);
 }
 
-PreparedJob prepare_job(const nlohmann::json& raw, int threads) {
+int threads_for(std::size_t particles, int max_threads) {
+  const std::size_t worth = std::max<std::size_t>(1, particles / kParticlesPerThread);
+  return static_cast<int>(
+      std::min<std::size_t>(worth, static_cast<std::size_t>(std::max(1, max_threads))));
+}
+
+PreparedJob prepare_job(const nlohmann::json& raw, int threads, int max_threads) {
   PreparedJob out;
   out.job = validate_job(raw);
   const nlohmann::json& job = out.job;
@@ -165,7 +171,10 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads) {
            "/method/formulation to \"updated_lagrangian\"");
   }
   const int job_threads = job.at("threads").get<int>();
-  sim.threads = threads > 0 ? threads : job_threads > 0 ? job_threads : omp_get_max_threads();
+  const int most = max_threads > 0 ? max_threads : omp_get_max_threads();
+  sim.threads = threads > 0       ? threads
+                : job_threads > 0 ? std::min(job_threads, most)
+                                  : threads_for(sim.particles.n, most);
 
   const nlohmann::json& t = job.at("time");
   out.end_s = t.contains("end_s") ? t.at("end_s").get<double>() : out.scene.default_end_s;

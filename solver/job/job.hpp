@@ -43,7 +43,15 @@ struct PreparedJob {
   std::int64_t frames = 0;          // snapshots the run will write (with frame 0 and the last)
 };
 
-// Validates, builds the scene, chooses dt. `threads` <= 0: the job's or all cores.
-PreparedJob prepare_job(const nlohmann::json& job, int threads = 0);
+// Validates, builds the scene, chooses dt. `threads` > 0: exactly that many
+// OpenMP threads; else the job's "threads" or else threads_for() the
+// scene's size, either at most `max_threads` (<= 0: all cores).
+PreparedJob prepare_job(const nlohmann::json& job, int threads = 0, int max_threads = 0);
+
+// Threads worth giving a scene of `particles`: one per kParticlesPerThread,
+// at least one, at most max_threads. Below that a time step is too short
+// for its ~10 thread barriers to pay off (docs/speed-accuracy.md, Threads).
+inline constexpr std::size_t kParticlesPerThread = 20000;
+int threads_for(std::size_t particles, int max_threads);
 
 }  // namespace gearsph

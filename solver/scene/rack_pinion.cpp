@@ -79,6 +79,7 @@ Scene build_rack_pinion(const SceneInput& in) {
   L.pressure_angle = deg(pj.at("pressure_angle_deg").get<double>());
   L.face_width_m = 1e-3 * pj.at("face_width_mm").get<double>();
   L.omega = pj.at("omega_rad_s").get<double>();
+  if (pj.contains("torque_N_m")) L.torque_Nm = pj.at("torque_N_m").get<double>();
   L.rack_velocity = rj.at("velocity_m_s").get<double>();
   L.load_N = rj.at("load_N").get<double>();
   L.end_s = in.end_s > 0 ? in.end_s : 0.04;
@@ -226,7 +227,11 @@ Scene build_rack_pinion(const SceneInput& in) {
       read_material(s.contains("pinion_material") ? s.at("pinion_material") : s.at("material"));
   const Material mat_r =
       read_material(s.contains("rack_material") ? s.at("rack_material") : s.at("material"));
-  sim.motions.push_back(Motion::rotation("pinion hub", L.cx, L.cy, L.omega));
+  // Held at omega, or turned by a torque (attached inertia set below, from
+  // the particles).
+  sim.motions.push_back(L.torque_Nm ? Motion::torque_rotation("pinion hub", L.cx, L.cy, L.omega,
+                                                              *L.torque_Nm / L.face_width_m, 0.0)
+                                    : Motion::rotation("pinion hub", L.cx, L.cy, L.omega));
   sim.motions.push_back(Motion::guided_x("rack back"));
   const Point origin{0.0, 0.0};
   add_body(sim, "pinion", mat_p);
@@ -252,6 +257,18 @@ Scene build_rack_pinion(const SceneInput& in) {
     p.vx[i] = -L.omega * (p.y[i] - L.cy);
     p.vy[i] = L.omega * (p.x[i] - L.cx);
   }
+  // A torque-driven hub also turns what is not modelled: the rest of the
+  // pinion's steel (its full outline less the modelled particles, about the
+  // axis) and what the job attaches (shaft, motor).
+  const double pinion_inertia = mat_p.rho0 * geometry::polar_moment(pinion.outline());
+  double modelled_inertia = 0.0;
+  for (std::size_t i = pin_body.begin; i < pin_body.end; ++i) {
+    modelled_inertia +=
+        p.mass[i] * ((p.x[i] - L.cx) * (p.x[i] - L.cx) + (p.y[i] - L.cy) * (p.y[i] - L.cy));
+  }
+  const double attached_inertia = std::max(0.0, pinion_inertia - modelled_inertia) +
+                                  pj.at("attached_inertia_kg_m2").get<double>() / L.face_width_m;
+  sim.motions[1].attached_inertia = L.torque_Nm ? attached_inertia : 0.0;
   std::size_t n_back = 0;
   for (std::size_t i = rack_body.begin; i < rack_body.end; ++i) {
     p.vx[i] = L.rack_velocity;
@@ -303,13 +320,14 @@ Scene build_rack_pinion(const SceneInput& in) {
       if (((k - m) % L.teeth + L.teeth) % L.teeth == 0) tooth_of[i] = m;
     }
   }
-  // Tooth 0's critical section: the particles of the tooth within half a
-  // spacing of the chord between its 30-degree points (one lattice row: the
-  // chord is nearly horizontal for the tooth pointing down at the rack).
-  if (std::find(pinion_teeth.begin(), pinion_teeth.end(), 0) != pinion_teeth.end()) {
-    const Point right = place.pinion.apply(geometry::rotate(t30.right, kPi));
-    const Point left = place.pinion.apply(geometry::rotate(t30.left, kPi));
-    GearLayout::Section& sec = L.root_section;
+  // Each tooth's critical section: the particles of the tooth within half a
+  // spacing of the chord between its 30-degree points (for tooth 0, pointing
+  // down at the rack, one lattice row: the chord is nearly horizontal).
+  for (int k : pinion_teeth) {
+    const double to_gear = kPi + k * pitch_angle;
+    const Point right = place.pinion.apply(geometry::rotate(t30.right, to_gear));
+    const Point left = place.pinion.apply(geometry::rotate(t30.left, to_gear));
+    GearLayout::Section sec;
     sec.cx = 0.5 * (left.x + right.x);
     sec.cy = 0.5 * (left.y + right.y);
     const double len = std::hypot(right.x - left.x, right.y - left.y);
@@ -320,13 +338,15 @@ Scene build_rack_pinion(const SceneInput& in) {
     for (std::size_t i = pin_body.begin; i < pin_body.end; ++i) {
       const double rx = p.x[i] - sec.cx, ry = p.y[i] - sec.cy;
       const double along = rx * sec.ux + ry * sec.uy, across = -rx * sec.uy + ry * sec.ux;
-      if (tooth_of[i] == 0 && std::abs(across) <= 0.5 * dx && std::abs(along) <= 0.5 * len + dx) {
+      if (tooth_of[i] == k && std::abs(across) <= 0.5 * dx && std::abs(along) <= 0.5 * len + dx) {
         sec.particles.push_back(i);
       }
     }
-    for (std::size_t i = pin_body.begin; i < pin_body.end; ++i) {
-      if (tooth_of[i] == 0) L.tooth0_particles.push_back(i);
-    }
+    L.tooth_sections.push_back(sec);
+    if (k == 0) L.root_section = sec;
+  }
+  for (std::size_t i = pin_body.begin; i < pin_body.end; ++i) {
+    if (tooth_of[i] == 0) L.tooth0_particles.push_back(i);
   }
 
   // --- Histories.
@@ -342,12 +362,15 @@ Scene build_rack_pinion(const SceneInput& in) {
   x_rack0 /= static_cast<double>(rb1 - rb0);
   scene.columns.push_back(
       {"rack_vx_m_s", [rack_mean](const Simulation& s2) { return rack_mean(s2.particles.vx); }});
-  // Transmission error: the rack's displacement minus ideal rolling r omega t.
+  // Transmission error: the rack's displacement minus ideal rolling r theta
+  // (theta = omega t when the hub is held at omega).
+  scene.columns.push_back({"transmission_error_m", [rack_mean, x_rack0, r](const Simulation& s2) {
+                             return rack_mean(s2.particles.x) - x_rack0 - r * s2.motions[1].angle;
+                           }});
   scene.columns.push_back(
-      {"transmission_error_m", [rack_mean, x_rack0, r, w = L.omega](const Simulation& s2) {
-         return rack_mean(s2.particles.x) - x_rack0 - r * w * s2.time;
-       }});
-  // Torque the drive applies to the hub, per gear (face width b).
+      {"pinion_omega_rad_s", [](const Simulation& s2) { return s2.motions[1].omega; }});
+  // Torque the teeth put on the hub, reversed, per gear (face width b): what
+  // a drive holding the speed supplies (the hub's own inertia aside).
   scene.columns.push_back({"pinion_torque_Nm", [b, cx = L.cx, cy = L.cy](const Simulation& s2) {
                              const Particles& q = s2.particles;
                              double t = 0;
@@ -371,6 +394,13 @@ Scene build_rack_pinion(const SceneInput& in) {
     scene.columns.push_back(
         {"root_stress_t" + std::to_string(k) + "_Pa", [ia = ia, ib = ib](const Simulation& s2) {
            return std::max(max_principal(s2.particles, ia), max_principal(s2.particles, ib));
+         }});
+    // Nominal bending stress 6 M / s^2 on the critical section: smoother
+    // than a single fillet particle, and what ISO's Y_F describes.
+    scene.columns.push_back(
+        {"root_bending_t" + std::to_string(k) + "_Pa",
+         [sec = L.tooth_sections[t], cx = L.cx, cy = L.cy](const Simulation& s2) {
+           return section_loads(sec, s2, s2.motions[1].angle, cx, cy).nominal_bending_stress;
          }});
     scene.columns.push_back(
         {"tooth_force_t" + std::to_string(k) + "_N", [tooth_of, k, b](const Simulation& s2) {
@@ -429,7 +459,13 @@ Scene build_rack_pinion(const SceneInput& in) {
         {"undercut", pinion.undercut()},
         {"pitch_thickness_m", pinion.pitch_thickness()},
         {"deformable_from_radius_m", r_drive},
-        {"driven_hub_particles", hub}}},
+        {"driven_hub_particles", hub},
+        {"drive", L.torque_Nm ? nlohmann::json{{"torque_N_m", *L.torque_Nm},
+                                               {"initial_omega_rad_s", L.omega},
+                                               {"pinion_inertia_kg_m2", pinion_inertia * b},
+                                               {"attached_inertia_kg_m2",
+                                                pj.at("attached_inertia_kg_m2").get<double>()}}
+                              : nlohmann::json{{"omega_rad_s", L.omega}}}}},
       {"rack",
        {{"modelled_teeth", rs.teeth},
         {"pitch_m", rack.pitch()},

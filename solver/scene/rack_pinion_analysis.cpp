@@ -53,23 +53,15 @@ namespace {
 // form factor Y_F describes before the stress concentration Y_S; unlike the
 // stress of a single particle at the fillet it does not depend on where the
 // lattice cuts the surface.
-nlohmann::json root_section_loads(const GearLayout::Section& sec, const Simulation& sim) {
-  const Particles& p = sim.particles;
-  const double nx = -sec.uy, ny = sec.ux;
-  double N = 0.0, M = 0.0;
-  for (std::size_t i : sec.particles) {
-    const double sxx = p.sigma_xx(i), syy = p.sigma_yy(i), sxy = p.sigma_xy(i);
-    const double snn = nx * nx * sxx + 2.0 * nx * ny * sxy + ny * ny * syy;
-    const double along = (p.x[i] - sec.cx) * sec.ux + (p.y[i] - sec.cy) * sec.uy;
-    N += snn * sec.dx;
-    M += snn * along * sec.dx;
-  }
+nlohmann::json root_section_loads(const GearLayout& L, const Simulation& sim) {
+  const GearLayout::Section& sec = L.root_section;
+  const SectionLoads s = section_loads(sec, sim, sim.motions[1].angle, L.cx, L.cy);
   return {{"particles", sec.particles.size()},
           {"chord_m", sec.width},
-          {"normal_force_N_per_m", N},
-          {"bending_moment_N", M},
-          {"nominal_bending_stress_Pa", 6.0 * std::abs(M) / (sec.width * sec.width)},
-          {"mean_normal_stress_Pa", N / sec.width}};
+          {"normal_force_N_per_m", s.normal_force},
+          {"bending_moment_N", s.bending_moment},
+          {"nominal_bending_stress_Pa", s.nominal_bending_stress},
+          {"mean_normal_stress_Pa", s.normal_force / sec.width}};
 }
 
 // Where the contact load on tooth 0 acts: the contact-force-weighted mean
@@ -104,6 +96,29 @@ gear::IsoToothForm iso_at(const GearLayout& L, double radius) {
 
 }  // namespace
 
+SectionLoads section_loads(const GearLayout::Section& sec, const Simulation& sim, double angle,
+                           double cx, double cy) {
+  const Particles& p = sim.particles;
+  const double c = std::cos(angle), sn = std::sin(angle);
+  // The chord's centre and direction, carried round with the hub.
+  const double ox = cx + c * (sec.cx - cx) - sn * (sec.cy - cy);
+  const double oy = cy + sn * (sec.cx - cx) + c * (sec.cy - cy);
+  const double ux = c * sec.ux - sn * sec.uy, uy = sn * sec.ux + c * sec.uy;
+  const double nx = -uy, ny = ux;
+  SectionLoads out;
+  for (std::size_t i : sec.particles) {
+    const double sxx = p.sigma_xx(i), syy = p.sigma_yy(i), sxy = p.sigma_xy(i);
+    const double snn = nx * nx * sxx + 2.0 * nx * ny * sxy + ny * ny * syy;
+    const double along = (p.x[i] - ox) * ux + (p.y[i] - oy) * uy;
+    // The particles within half a spacing of the chord sample it at one per
+    // spacing on average, whatever its direction on the lattice.
+    out.normal_force += snn * sec.dx;
+    out.bending_moment += snn * along * sec.dx;
+  }
+  out.nominal_bending_stress = 6.0 * std::abs(out.bending_moment) / (sec.width * sec.width);
+  return out;
+}
+
 nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
                                    const Simulation& final_state) {
   nlohmann::json a;
@@ -135,18 +150,23 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
   // tangential part (contact force along the line of action: Ft = F cos alpha).
   const double ft = L.load_N > 0 ? L.load_N : f_max * std::cos(L.pressure_angle);
   nlohmann::json teeth = nlohmann::json::array();
-  double root_max = 0.0;
+  double root_max = 0.0, bending_max = 0.0;
   for (int k : L.pinion_teeth) {
     const std::string sk = std::to_string(k);
     const std::vector<double> rs = h.column("root_stress_t" + sk + "_Pa");
     const std::vector<double> tf = h.column("tooth_force_t" + sk + "_N");
+    const std::vector<double> rb = h.column("root_bending_t" + sk + "_Pa");
     const double peak = max_of(rs);
     root_max = std::max(root_max, peak);
-    teeth.push_back(
-        {{"tooth", k}, {"max_root_stress_Pa", peak}, {"max_tooth_force_N", max_of(tf)}});
+    bending_max = std::max(bending_max, max_of(rb));
+    teeth.push_back({{"tooth", k},
+                     {"max_root_stress_Pa", peak},
+                     {"max_root_bending_stress_Pa", max_of(rb)},
+                     {"max_tooth_force_N", max_of(tf)}});
   }
   a["pinion_teeth"] = teeth;
   a["max_root_stress_Pa"] = root_max;
+  a["max_root_bending_stress_Pa"] = bending_max;
   a["root_stress_references"] = {
       {"tangential_force_N", ft},
       {"lewis_Y", L.lewis_Y},
@@ -230,7 +250,7 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
     const double ft0 = tooth_force * std::cos(L.pressure_angle);
     const double iso = ft0 / (b * m) * form.Y_F * form.Y_S;
     const double iso_nominal = ft0 / (b * m) * form.Y_F;
-    const nlohmann::json section = root_section_loads(L.root_section, final_state);
+    const nlohmann::json section = root_section_loads(L, final_state);
     const double bending = section.at("nominal_bending_stress_Pa").get<double>();
     a["static_check"] = {
         {"root_section", section},
