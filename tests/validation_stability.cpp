@@ -70,5 +70,23 @@ std::string name(const ::testing::TestParamInfo<Cell>& info) {
 
 INSTANTIATE_TEST_SUITE_P(Fast, StabilityCell, ::testing::ValuesIn(fast_cells()), name);
 
+// The gear rows (full matrix) shortened to 0.2 ms: the wedge of the
+// centre-reach contact laws builds from the first steps, and the surface
+// contact stays under the elastic impact bound.
+TEST(StabilityGear, CentreReachContactWedgesSurfaceContactDoesNot) {
+  for (Cell cell : study::stability_cells(true)) {
+    if (cell.case_id != "gear_3x_speed") continue;
+    cell.job["time"]["end_s"] = 2e-4;
+    const study::CellResult r = study::run_cell(cell, 1).result;
+    ASSERT_TRUE(r.contact_force_over_bound) << cell.method_id;
+    if (cell.method_id == "tl_surface_penalty") {
+      EXPECT_NE(r.outcome, "failed") << r.message;
+      EXPECT_LT(*r.contact_force_over_bound, 1.0);
+    } else {
+      EXPECT_EQ(r.failed_by, "wedged") << cell.method_id << ": " << r.message;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace gearsph

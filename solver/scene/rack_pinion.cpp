@@ -67,6 +67,111 @@ std::vector<int> teeth_in_window(double offset, double travel, double lo, double
   return out;
 }
 
+// The pinion teeth to model, numbered from the one in mesh at t = 0: those
+// whose axis sweeps the engagement window [lo, hi] (in pitches) while the
+// pinion turns `turn` pitches ("auto"), all of them, or a count.
+std::vector<int> choose_pinion_teeth(const nlohmann::json& choice, const GearLayout& L, double turn,
+                                     double lo, double hi) {
+  std::vector<int> teeth;
+  if (choice == "auto") return teeth_in_window(0.0, turn, lo, hi, L.teeth);
+  if (choice == "all") {
+    for (int k = 0; k < L.teeth; ++k) teeth.push_back(k);
+    return teeth;
+  }
+  // n teeth from the one in mesh, extended toward where teeth come from.
+  const int n = choice.get<int>();
+  const int dir = L.omega <= 0 ? 1 : -1;
+  const int first = -(n - 1) / 2;
+  for (int k = 0; k < n; ++k) teeth.push_back(dir * (first + k));
+  std::sort(teeth.begin(), teeth.end());
+  return teeth;
+}
+
+// Rack teeth as offsets u - 1/2 from the pitch point (a pinion tooth sits
+// in a space at t = 0, so rack teeth are at half-integer positions): those
+// swept through the window by the rack's own travel, or a count.
+std::vector<int> choose_rack_offsets(const nlohmann::json& choice, const GearLayout& L,
+                                     double travel, double lo, double hi) {
+  if (choice == "auto") return teeth_in_window(0.5, travel, lo, hi, 4 * L.teeth);
+  std::vector<int> offsets;
+  const int n = choice.get<int>();  // n teeth around the mesh position
+  for (int k = 0; k < n; ++k) offsets.push_back(k - n / 2);
+  return offsets;
+}
+
+// History columns (docs/gears.md, What a run reports): the rack's motion
+// and transmission error, the hub's rate and torque, the contact force,
+// and per modelled tooth its root stress (fillet particles and section
+// bending) and contact force. Particles of no tooth have tooth_of = INT_MIN.
+void add_gear_histories(Scene& scene, const GearLayout& L, const std::vector<int>& tooth_of,
+                        const std::vector<std::pair<std::size_t, std::size_t>>& root_particles) {
+  const Particles& p = scene.sim.particles;
+  const double b = L.face_width_m, r = L.pitch_radius;
+  const std::size_t rb0 = scene.sim.bodies[1].begin, rb1 = scene.sim.bodies[1].end;
+  auto rack_mean = [rb0, rb1](const std::vector<double>& v) {
+    double sum = 0;
+    for (std::size_t i = rb0; i < rb1; ++i) sum += v[i];
+    return sum / static_cast<double>(rb1 - rb0);
+  };
+  double x_rack0 = 0;
+  for (std::size_t i = rb0; i < rb1; ++i) x_rack0 += p.x[i];
+  x_rack0 /= static_cast<double>(rb1 - rb0);
+  scene.columns.push_back(
+      {"rack_vx_m_s", [rack_mean](const Simulation& s2) { return rack_mean(s2.particles.vx); }});
+  // Transmission error: the rack's displacement minus ideal rolling r theta
+  // (theta = omega t when the hub is held at omega).
+  scene.columns.push_back({"transmission_error_m", [rack_mean, x_rack0, r](const Simulation& s2) {
+                             return rack_mean(s2.particles.x) - x_rack0 - r * s2.motions[1].angle;
+                           }});
+  scene.columns.push_back(
+      {"pinion_omega_rad_s", [](const Simulation& s2) { return s2.motions[1].omega; }});
+  // Torque the teeth put on the hub, reversed, per gear (face width b): what
+  // a drive holding the speed supplies (the hub's own inertia aside).
+  scene.columns.push_back({"pinion_torque_Nm", [b, cx = L.cx, cy = L.cy](const Simulation& s2) {
+                             const Particles& q = s2.particles;
+                             double t = 0;
+                             for (std::size_t i = 0; i < q.n; ++i) {
+                               if (q.motion[i] != 1) continue;
+                               const double fx = q.mass[i] * (q.ax[i] + q.ext_ax[i]);
+                               const double fy = q.mass[i] * (q.ay[i] + q.ext_ay[i]);
+                               t -= (q.x[i] - cx) * fy - (q.y[i] - cy) * fx;
+                             }
+                             return t * b;
+                           }});
+  scene.columns.push_back({"contact_force_N", [b](const Simulation& s2) {
+                             const ContactState& cs = s2.contact_state;
+                             return cs.force_x.size() > 1
+                                        ? b * std::hypot(cs.force_x[1], cs.force_y[1])
+                                        : 0.0;
+                           }});
+  for (std::size_t t = 0; t < L.pinion_teeth.size(); ++t) {
+    const int k = L.pinion_teeth[t];
+    const auto [ia, ib] = root_particles[t];
+    scene.columns.push_back(
+        {"root_stress_t" + std::to_string(k) + "_Pa", [ia = ia, ib = ib](const Simulation& s2) {
+           return std::max(max_principal(s2.particles, ia), max_principal(s2.particles, ib));
+         }});
+    // Nominal bending stress 6 M / s^2 on the critical section: smoother
+    // than a single fillet particle, and what ISO's Y_F describes.
+    scene.columns.push_back(
+        {"root_bending_t" + std::to_string(k) + "_Pa",
+         [sec = L.tooth_sections[t], cx = L.cx, cy = L.cy](const Simulation& s2) {
+           return section_loads(sec, s2, s2.motions[1].angle, cx, cy).nominal_bending_stress;
+         }});
+    scene.columns.push_back(
+        {"tooth_force_t" + std::to_string(k) + "_N", [tooth_of, k, b](const Simulation& s2) {
+           const Particles& q = s2.particles;
+           double fx = 0, fy = 0;
+           for (std::size_t i = 0; i < q.n; ++i) {
+             if (tooth_of[i] != k) continue;
+             fx += q.mass[i] * q.contact_ax[i];
+             fy += q.mass[i] * q.contact_ay[i];
+           }
+           return b * std::hypot(fx, fy);
+         }});
+  }
+}
+
 }  // namespace
 
 Scene build_rack_pinion(const SceneInput& in) {
@@ -144,21 +249,7 @@ Scene build_rack_pinion(const SceneInput& in) {
   // Clockwise (omega < 0): teeth arrive from the +x side (positive axis
   // angles) and leave to -x; the window is [-after, before]. Mirror for CCW.
   const double lo = L.omega <= 0 ? -after : -before, hi = L.omega <= 0 ? before : after;
-  const std::string mode =
-      pj.at("modelled_teeth").is_string() ? pj.at("modelled_teeth").get<std::string>() : "count";
-  std::vector<int> pinion_teeth;
-  if (mode == "auto") {
-    pinion_teeth = teeth_in_window(0.0, turn, lo, hi, L.teeth);
-  } else if (mode == "all") {
-    for (int k = 0; k < L.teeth; ++k) pinion_teeth.push_back(k);
-  } else {
-    const int n = pj.at("modelled_teeth").get<int>();
-    // n teeth from the one in mesh, extended toward where teeth come from.
-    const int dir = L.omega <= 0 ? 1 : -1;
-    const int first = -(n - 1) / 2;
-    for (int k = 0; k < n; ++k) pinion_teeth.push_back(dir * (first + k));
-    std::sort(pinion_teeth.begin(), pinion_teeth.end());
-  }
+  std::vector<int> pinion_teeth = choose_pinion_teeth(pj.at("modelled_teeth"), L, turn, lo, hi);
   if (pinion_teeth.empty()) pinion_teeth.push_back(0);
   if (static_cast<int>(pinion_teeth.size()) > L.teeth) {
     pinion_teeth.resize(static_cast<std::size_t>(L.teeth));
@@ -166,20 +257,10 @@ Scene build_rack_pinion(const SceneInput& in) {
   const bool whole_pinion = static_cast<int>(pinion_teeth.size()) == L.teeth;
   L.pinion_teeth = pinion_teeth;
 
-  // Rack teeth: positions in pitches from the pitch point (a pinion tooth
-  // sits in a space at t = 0, so rack teeth are at half-integer offsets),
-  // swept by the rack's own travel.
+  // Rack teeth, swept by the rack's own travel.
   const double rack_turn = L.rack_velocity * L.end_s / pinion.spec().tool.pitch();
-  std::vector<int> rack_offsets;  // u - 1/2
-  const std::string rack_mode =
-      rj.at("modelled_teeth").is_string() ? rj.at("modelled_teeth").get<std::string>() : "count";
-  if (rack_mode == "auto") {
-    rack_offsets = teeth_in_window(0.5, rack_turn, lo, hi, 4 * L.teeth);
-  } else {
-    // n teeth around the mesh position.
-    const int n = rj.at("modelled_teeth").get<int>();
-    for (int k = 0; k < n; ++k) rack_offsets.push_back(k - n / 2);
-  }
+  const std::vector<int> rack_offsets =  // u - 1/2
+      choose_rack_offsets(rj.at("modelled_teeth"), L, rack_turn, lo, hi);
   const int m_min = rack_offsets.front(), m_max = rack_offsets.back();
   for (int m = m_min; m <= m_max; ++m) L.rack_teeth.push_back(m - m_min);
 
@@ -290,6 +371,10 @@ Scene build_rack_pinion(const SceneInput& in) {
   for (std::size_t i = rack_body.begin; i < rack_body.end; ++i) rack_mass += p.mass[i];
   const double k_x = L.iso_mesh_stiffness * std::cos(alpha) * std::cos(alpha);
   const double omega_mesh = std::sqrt(k_x / rack_mass);
+  // A mass-spring impact: the rack meets the mesh spring at the difference
+  // of pitch-line speeds (the pinion's pitch point moves at omega r along x).
+  const double speed_mismatch = std::abs(L.omega * r - L.rack_velocity);
+  L.impact_force_bound_N = L.load_N + speed_mismatch * std::sqrt(k_x * rack_mass) * L.face_width_m;
   L.quasi_static = s.at("quasi_static").get<bool>();
   if (L.quasi_static) {
     sim.damping_1_s = omega_mesh;  // damping ratio 1/2 of that mode, heavier for slower ones
@@ -349,79 +434,16 @@ Scene build_rack_pinion(const SceneInput& in) {
     if (tooth_of[i] == 0) L.tooth0_particles.push_back(i);
   }
 
-  // --- Histories.
-  const double b = L.face_width_m;
-  const std::size_t rb0 = rack_body.begin, rb1 = rack_body.end;
-  auto rack_mean = [rb0, rb1](const std::vector<double>& v) {
-    double sum = 0;
-    for (std::size_t i = rb0; i < rb1; ++i) sum += v[i];
-    return sum / static_cast<double>(rb1 - rb0);
-  };
-  double x_rack0 = 0;
-  for (std::size_t i = rb0; i < rb1; ++i) x_rack0 += p.x[i];
-  x_rack0 /= static_cast<double>(rb1 - rb0);
-  scene.columns.push_back(
-      {"rack_vx_m_s", [rack_mean](const Simulation& s2) { return rack_mean(s2.particles.vx); }});
-  // Transmission error: the rack's displacement minus ideal rolling r theta
-  // (theta = omega t when the hub is held at omega).
-  scene.columns.push_back({"transmission_error_m", [rack_mean, x_rack0, r](const Simulation& s2) {
-                             return rack_mean(s2.particles.x) - x_rack0 - r * s2.motions[1].angle;
-                           }});
-  scene.columns.push_back(
-      {"pinion_omega_rad_s", [](const Simulation& s2) { return s2.motions[1].omega; }});
-  // Torque the teeth put on the hub, reversed, per gear (face width b): what
-  // a drive holding the speed supplies (the hub's own inertia aside).
-  scene.columns.push_back({"pinion_torque_Nm", [b, cx = L.cx, cy = L.cy](const Simulation& s2) {
-                             const Particles& q = s2.particles;
-                             double t = 0;
-                             for (std::size_t i = 0; i < q.n; ++i) {
-                               if (q.motion[i] != 1) continue;
-                               const double fx = q.mass[i] * (q.ax[i] + q.ext_ax[i]);
-                               const double fy = q.mass[i] * (q.ay[i] + q.ext_ay[i]);
-                               t -= (q.x[i] - cx) * fy - (q.y[i] - cy) * fx;
-                             }
-                             return t * b;
-                           }});
-  scene.columns.push_back({"contact_force_N", [b](const Simulation& s2) {
-                             const ContactState& cs = s2.contact_state;
-                             return cs.force_x.size() > 1
-                                        ? b * std::hypot(cs.force_x[1], cs.force_y[1])
-                                        : 0.0;
-                           }});
-  for (std::size_t t = 0; t < pinion_teeth.size(); ++t) {
-    const int k = pinion_teeth[t];
-    const auto [ia, ib] = root_particles[t];
-    scene.columns.push_back(
-        {"root_stress_t" + std::to_string(k) + "_Pa", [ia = ia, ib = ib](const Simulation& s2) {
-           return std::max(max_principal(s2.particles, ia), max_principal(s2.particles, ib));
-         }});
-    // Nominal bending stress 6 M / s^2 on the critical section: smoother
-    // than a single fillet particle, and what ISO's Y_F describes.
-    scene.columns.push_back(
-        {"root_bending_t" + std::to_string(k) + "_Pa",
-         [sec = L.tooth_sections[t], cx = L.cx, cy = L.cy](const Simulation& s2) {
-           return section_loads(sec, s2, s2.motions[1].angle, cx, cy).nominal_bending_stress;
-         }});
-    scene.columns.push_back(
-        {"tooth_force_t" + std::to_string(k) + "_N", [tooth_of, k, b](const Simulation& s2) {
-           const Particles& q = s2.particles;
-           double fx = 0, fy = 0;
-           for (std::size_t i = 0; i < q.n; ++i) {
-             if (tooth_of[i] != k) continue;
-             fx += q.mass[i] * q.contact_ax[i];
-             fy += q.mass[i] * q.contact_ay[i];
-           }
-           return b * std::hypot(fx, fy);
-         }});
-  }
+  add_gear_histories(scene, L, tooth_of, root_particles);
   // Probe particles: the tooth in mesh at its pitch circle on the driving
   // flank, the rack tooth it drives, and the middle of the rack's back.
   const double drive_side = L.omega <= 0 ? -1.0 : 1.0;
   const double flank_angle = -0.5 * kPi + phase + drive_side * pinion.pitch_thickness() / (2 * r);
   const Point pitch_pt{L.cx + r * std::cos(flank_angle), L.cy + r * std::sin(flank_angle)};
   const std::size_t probe_pinion = nearest(p, pin_body.begin, pin_body.end, pitch_pt);
-  const std::size_t probe_rack = nearest(p, rb0, rb1, pitch_pt);
-  const std::size_t probe_back = nearest(p, rb0, rb1, {L.cx, back_y + 0.5 * dx});
+  const std::size_t probe_rack = nearest(p, rack_body.begin, rack_body.end, pitch_pt);
+  const std::size_t probe_back =
+      nearest(p, rack_body.begin, rack_body.end, {L.cx, back_y + 0.5 * dx});
   const std::pair<const char*, std::size_t> probes[] = {
       {"pinion_tooth", probe_pinion}, {"rack_tooth", probe_rack}, {"rack_back", probe_back}};
   for (const auto& [name, i] : probes) {
@@ -441,7 +463,7 @@ Scene build_rack_pinion(const SceneInput& in) {
       << " pitch after the mesh position (path of contact, contact ratio " << L.path.contact_ratio
       << ", plus half a pitch each side); in " << L.end_s << " s the pinion turns "
       << std::abs(turn) << " pitch and the rack travels " << std::abs(rack_turn) << " pitch";
-  L.selection = mode == "auto" ? why.str() : "set by the job (modelled_teeth)";
+  L.selection = pj.at("modelled_teeth") == "auto" ? why.str() : "set by the job (modelled_teeth)";
   std::size_t hub = 0, guided = 0;
   for (std::size_t i = 0; i < p.n; ++i) {
     hub += p.motion[i] == 1;
@@ -460,12 +482,13 @@ Scene build_rack_pinion(const SceneInput& in) {
         {"pitch_thickness_m", pinion.pitch_thickness()},
         {"deformable_from_radius_m", r_drive},
         {"driven_hub_particles", hub},
-        {"drive", L.torque_Nm ? nlohmann::json{{"torque_N_m", *L.torque_Nm},
-                                               {"initial_omega_rad_s", L.omega},
-                                               {"pinion_inertia_kg_m2", pinion_inertia * b},
-                                               {"attached_inertia_kg_m2",
-                                                pj.at("attached_inertia_kg_m2").get<double>()}}
-                              : nlohmann::json{{"omega_rad_s", L.omega}}}}},
+        {"drive", L.torque_Nm
+                      ? nlohmann::json{{"torque_N_m", *L.torque_Nm},
+                                       {"initial_omega_rad_s", L.omega},
+                                       {"pinion_inertia_kg_m2", pinion_inertia * L.face_width_m},
+                                       {"attached_inertia_kg_m2",
+                                        pj.at("attached_inertia_kg_m2").get<double>()}}
+                      : nlohmann::json{{"omega_rad_s", L.omega}}}}},
       {"rack",
        {{"modelled_teeth", rs.teeth},
         {"pitch_m", rack.pitch()},
@@ -477,6 +500,7 @@ Scene build_rack_pinion(const SceneInput& in) {
       {"initial_rotation_to_close_play_rad", phase},
       {"iso_mesh_stiffness_N_per_mm_um", 1e-9 * L.iso_mesh_stiffness},
       {"rack_mesh_mode_rad_s", omega_mesh},
+      {"impact_force_bound_N", L.impact_force_bound_N},
       {"quasi_static", L.quasi_static ? nlohmann::json{{"damping_1_s", sim.damping_1_s},
                                                        {"load_ramp_s", sim.load_ramp_s}}
                                       : nlohmann::json(false)}};

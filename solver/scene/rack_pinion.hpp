@@ -34,6 +34,10 @@ struct GearLayout {
   gear::IsoToothForm iso_tip, iso_hpstc, iso_pitch;
   double lewis_Y = 0.0;
   double iso_mesh_stiffness = 0.0;  // c' [N/m per m of face width], ISO 6336-1
+  // The largest contact force an elastic mesh can see from the start: the
+  // load plus the impact of the initial mismatch of pitch-line speeds on the
+  // mesh spring, dv sqrt(k m_rack) (per gear) [N].
+  double impact_force_bound_N = 0.0;
   bool quasi_static = false;
   // ISO 6336-3 critical section of tooth 0 (between its 30-degree points):
   // the lattice row that lies on it, for the section's bending moment.

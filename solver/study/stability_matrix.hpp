@@ -47,7 +47,7 @@ std::vector<Cell> stability_cells(bool full);
 
 struct CellResult {
   std::string outcome;    // "stable", "warning" or "failed"
-  std::string failed_by;  // detector or guard quantity; "stuck", "spurious_stress"
+  std::string failed_by;  // detector or guard quantity; "stuck", "spurious_stress", "wedged"
   double failed_at_s = -1.0;
   std::int64_t failed_at_step = -1;
   std::string message;
@@ -56,8 +56,9 @@ struct CellResult {
   double zigzag = 0.0;         // max hourglass indicator
   double min_spacing_over_dx = 0.0;
   double max_penetration_over_dx = 0.0;
-  std::optional<bool> stuck;              // bodies did not separate (contact cases)
-  std::optional<double> spurious_stress;  // spinning disk: von Mises / scale
+  std::optional<bool> stuck;                       // bodies did not separate (contact cases)
+  std::optional<double> spurious_stress;           // spinning disk: von Mises / scale
+  std::optional<double> contact_force_over_bound;  // gear: peak contact force / impact bound
   std::size_t particles = 0;
   std::int64_t steps = 0, steps_planned = 0;
   double dt_s = 0.0, dt_limit_s = 0.0;
