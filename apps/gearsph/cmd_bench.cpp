@@ -397,12 +397,14 @@ int bench_main(Args& args) {
 struct Setting {
   std::string kernel;
   double h_over_dx = 0;  // 0: the kernel's default
-  int across = 10;       // particles across the plate thickness (H/dx)
+  int across = 10;       // particles across the plate thickness (H/dx), or the Hertz a/dx
   double cfl = 0;        // 0: the default step (80 % of the measured limit)
   std::string formulation = "total_lagrangian";
+  std::string label = {};  // as printed and charted
+  double spacing_mm = 0;   // the gear sweep's spacing
 };
 
-std::string label(const Setting& s) {
+std::string plate_label(const Setting& s) {
   std::string l = s.kernel + " H/dx=" + std::to_string(s.across);
   if (s.h_over_dx > 0) l += " h/dx=" + fmt("%.2g", s.h_over_dx);
   if (s.cfl > 0) l += " cfl=" + fmt("%.2g", s.cfl);
@@ -429,12 +431,13 @@ std::vector<bool> pareto_front(const std::vector<double>& cost, const std::vecto
 // Error against cost on log-log axes: one marker series per kernel, the
 // Pareto front as a line.
 void pareto_chart(const std::filesystem::path& path, const std::string& title,
-                  const std::vector<Setting>& set, const std::vector<double>& cost,
-                  const std::vector<double>& err, const std::vector<bool>& front) {
+                  const std::string& error_name, const std::vector<Setting>& set,
+                  const std::vector<double>& cost, const std::vector<double>& err,
+                  const std::vector<bool>& front) {
   render::Plot plot;
   plot.title = title;
   plot.x_label = "log10 CPU time [s]";
-  plot.y_label = "log10 |period error|";
+  plot.y_label = "log10 |" + error_name + "|";
   double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
   for (std::size_t i = 0; i < set.size(); ++i) {
     if (!std::isfinite(err[i]) || err[i] <= 0) continue;
@@ -493,14 +496,205 @@ void pareto_chart(const std::filesystem::path& path, const std::string& title,
 }
 #endif
 
+// The rows of a sweep (written as they finish), its Pareto front
+// (pareto_NAME_front.csv), the chart (pareto_NAME.png) and the front printed.
+void report_sweep(const std::filesystem::path& out, const std::string& name,
+                  const std::string& title, const std::string& error_name,
+                  const std::vector<Setting>& set, const std::vector<double>& cost,
+                  const std::vector<double>& err, std::ofstream& csv,
+                  const std::vector<std::string>& csv_rows) {
+  const std::vector<bool> front = pareto_front(cost, err);
+  std::ofstream fcsv(out / ("pareto_" + name + "_front.csv"));
+  fcsv << "setting,cpu_s,abs_error\n";
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    csv << csv_rows[i] << '\n';
+    if (front[i]) fcsv << set[i].label << ',' << cost[i] << ',' << err[i] << '\n';
+  }
+  csv.flush();
+  const std::filesystem::path png = out / ("pareto_" + name + ".png");
+#ifdef GEARSPH_WITH_RENDER
+  pareto_chart(png, title, error_name, set, cost, err, front);
+  std::printf("chart: %s\n", png.c_str());
+#else
+  std::printf("(built without the renderer: no PNG chart)\n");
+#endif
+  std::printf("Pareto front, %s (cheapest first):\n", error_name.c_str());
+  std::vector<std::size_t> idx;
+  for (std::size_t i = 0; i < set.size(); ++i)
+    if (front[i]) idx.push_back(i);
+  std::sort(idx.begin(), idx.end(), [&](auto a, auto b) { return cost[a] < cost[b]; });
+  for (std::size_t i : idx)
+    std::printf("  %-52s cpu %8.2f s  |error| %.3g%%\n", set[i].label.c_str(), cost[i],
+                100 * err[i]);
+}
+
+// One run of a sweep: CPU time and the summary (empty when refused).
+struct SweepRun {
+  double cpu = 0, wall = 0, dt = 0;
+  std::size_t particles = 0;
+  std::int64_t steps = 0;
+  std::string status;
+  json summary;
+};
+
+SweepRun run_for_sweep(const json& job, int threads) {
+  SweepRun r;
+  try {
+    PreparedJob pj = prepare_job(job, threads);
+    r.particles = pj.scene.sim.particles.n;
+    r.dt = pj.scene.sim.dt;
+    const double c0 = cpu_seconds();
+    const RunResult rr = run_job(pj);
+    r.cpu = cpu_seconds() - c0;
+    r.wall = rr.wall_s;
+    r.steps = rr.steps_done;
+    r.status = rr.status;
+    r.summary = rr.summary;
+  } catch (const std::exception& e) {
+    r.status = std::string("refused: ") + e.what();
+    for (char& c : r.status)
+      if (c == ',' || c == '\n') c = ';';
+  }
+  return r;
+}
+
+// Hertz line contact (validation.md 6): peak-pressure error against cost,
+// over kernel and a/dx (the contact half-width in spacings), TL.
+void hertz_sweep(const std::filesystem::path& out, bool quick, int threads) {
+  const char* kernels[] = {"seed_quartic", "cubic_spline", "quintic_spline", "wendland_c2"};
+  const double a = 4.8138e-4;  // the scene's half-width at its default load [m]
+  const std::vector<int> across = quick ? std::vector<int>{3, 4} : std::vector<int>{3, 4, 6};
+  std::vector<Setting> set;
+  for (const char* k : kernels)
+    for (int n : across) {
+      Setting s{k, 0, n, 0, "total_lagrangian"};
+      s.label = std::string(k) + " a/dx=" + std::to_string(n);
+      set.push_back(s);
+    }
+  std::vector<double> cost(set.size(), 0.0), err(set.size(), std::nan(""));
+  std::ofstream csv(out / "pareto_hertz.csv");
+  csv << "kernel,a_over_dx,particles,steps,wall_s,cpu_s,peak_pressure_Pa,reference_Pa,"
+         "p0_error,half_width_error,status\n";
+  std::vector<std::string> rows;
+  std::printf("\n%-52s %9s %8s %9s %9s %11s\n", "Hertz setting", "particles", "steps", "wall_s",
+              "cpu_s", "p0_err");
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    const json job = {
+        {"name", "pareto-hertz"},
+        {"scene",
+         {{"type", "hertz"},
+          {"cap_height_over_a", 6.0},
+          {"block_half_width_over_a", 6.0},
+          {"block_depth_over_a", 6.0}}},
+        {"discretization", {{"spacing_m", a / set[i].across}, {"kernel", set[i].kernel}}},
+        {"output", {{"frames", 0}}}};
+    const SweepRun r = run_for_sweep(job, threads);
+    double p0 = std::nan(""), ref = std::nan(""), aerr = std::nan("");
+    if (r.summary.contains("analysis") && r.summary["analysis"].contains("peak_pressure_Pa")) {
+      const json& an = r.summary.at("analysis");
+      p0 = an.at("peak_pressure_Pa").get<double>();
+      ref = an.at("reference_peak_pressure_Pa").get<double>();
+      aerr =
+          an.at("half_width_m").get<double>() / an.at("reference_half_width_m").get<double>() - 1;
+      err[i] = std::abs(p0 / ref - 1.0);
+    }
+    cost[i] = r.cpu;
+    std::printf(
+        "%-52s %9zu %8lld %9.2f %9.2f %11s\n", set[i].label.c_str(), r.particles,
+        static_cast<long long>(r.steps), r.wall, r.cpu,
+        std::isfinite(err[i]) ? fmt("%+.2f%%", 100 * (p0 / ref - 1)).c_str() : r.status.c_str());
+    std::fflush(stdout);
+    std::ostringstream line;
+    line << set[i].kernel << ',' << set[i].across << ',' << r.particles << ',' << r.steps << ','
+         << r.wall << ',' << r.cpu << ',' << p0 << ',' << ref << ',' << (p0 / ref - 1) << ','
+         << aerr << ',' << r.status;
+    rows.push_back(line.str());
+  }
+  report_sweep(out, "hertz", "Hertz line contact: peak-pressure error against CPU time", "p0 error",
+               set, cost, err, csv, rows);
+}
+
+// The quasi-static gear (validation.md 7, 1 kN): tooth 0's nominal root
+// bending stress against the finest run's, over kernel and spacing.
+void gear_sweep(const std::filesystem::path& out, bool quick, int threads) {
+  const char* kernels[] = {"seed_quartic", "cubic_spline", "quintic_spline", "wendland_c2"};
+  const std::vector<double> spacings_mm =
+      quick ? std::vector<double>{1.0} : std::vector<double>{1.0, 0.5};
+  const double finest_mm = quick ? 0.5 : 0.25;
+  auto job = [](const std::string& kernel, double dx_mm) {
+    return json{{"name", "pareto-gear"},
+                {"scene",
+                 {{"type", "rack_pinion"},
+                  {"quasi_static", true},
+                  {"pinion", {{"omega_rad_s", 0.0}}},
+                  {"rack", {{"velocity_m_s", 0.0}, {"load_N", 1000.0}}}}},
+                {"discretization", {{"spacing_mm", dx_mm}, {"kernel", kernel}}},
+                {"output", {{"frames", 0}}}};
+  };
+  auto bending = [](const SweepRun& r) {
+    return r.summary.contains(json::json_pointer("/analysis/static_check"))
+               ? r.summary.at(json::json_pointer("/analysis/static_check"))
+                     .at("nominal_bending_stress_Pa")
+                     .get<double>()
+               : std::nan("");
+  };
+  std::printf("\nGear reference: seed_quartic at %.2g mm ...\n", finest_mm);
+  std::fflush(stdout);
+  const SweepRun finest = run_for_sweep(job("seed_quartic", finest_mm), threads);
+  const double reference = bending(finest);
+  std::printf("  %.4g MPa (%zu particles, cpu %.1f s)\n", 1e-6 * reference, finest.particles,
+              finest.cpu);
+  std::vector<Setting> set;
+  for (const char* k : kernels)
+    for (double mm : spacings_mm) {
+      Setting s{k, 0, 0, 0, "total_lagrangian"};
+      s.label = std::string(k) + " dx=" + fmt("%.2g", mm) + " mm";
+      s.spacing_mm = mm;
+      set.push_back(s);
+    }
+  std::vector<double> cost(set.size(), 0.0), err(set.size(), std::nan(""));
+  std::ofstream csv(out / "pareto_gear.csv");
+  csv << "kernel,spacing_mm,particles,steps,wall_s,cpu_s,root_bending_Pa,reference_Pa,"
+         "reference_spacing_mm,error,status\n";
+  std::vector<std::string> rows;
+  std::printf("%-52s %9s %8s %9s %9s %11s\n", "gear setting", "particles", "steps", "wall_s",
+              "cpu_s", "root_err");
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    const SweepRun r = run_for_sweep(job(set[i].kernel, set[i].spacing_mm), threads);
+    const double sigma = bending(r);
+    const double e = sigma / reference - 1.0;
+    err[i] = std::abs(e);
+    cost[i] = r.cpu;
+    std::printf("%-52s %9zu %8lld %9.2f %9.2f %11s\n", set[i].label.c_str(), r.particles,
+                static_cast<long long>(r.steps), r.wall, r.cpu,
+                std::isfinite(e) ? fmt("%+.2f%%", 100 * e).c_str() : r.status.c_str());
+    std::fflush(stdout);
+    std::ostringstream line;
+    line << set[i].kernel << ',' << set[i].spacing_mm << ',' << r.particles << ',' << r.steps << ','
+         << r.wall << ',' << r.cpu << ',' << sigma << ',' << reference << ',' << finest_mm << ','
+         << e << ',' << r.status;
+    rows.push_back(line.str());
+  }
+  report_sweep(out, "gear", "Static gear: root bending error (vs the finest run) against CPU time",
+               "root bending error", set, cost, err, csv, rows);
+}
+
 int pareto_main(Args& args) {
   const bool quick = args.flag("quick");
   const auto out_opt = args.option("out");
   const int threads = args.integer("threads", 1);
+  const std::string cases = args.option("cases").value_or("plate,hertz,gear");
   args.positional();
-  if (!out_opt) throw std::invalid_argument("usage: gearsph bench pareto --out DIR [--quick]");
+  if (!out_opt) {
+    throw std::invalid_argument(
+        "usage: gearsph bench pareto --out DIR [--quick] [--cases plate,hertz,gear]");
+  }
   const std::filesystem::path out = *out_opt;
   std::filesystem::create_directories(out);
+  auto wanted = [&cases](const char* c) { return cases.find(c) != std::string::npos; };
+  if (wanted("hertz")) hertz_sweep(out, quick, threads);
+  if (wanted("gear")) gear_sweep(out, quick, threads);
+  if (!wanted("plate")) return 0;
 
   const char* kernels[] = {"seed_quartic", "cubic_spline", "quintic_spline", "wendland_c2"};
   std::vector<Setting> set;
@@ -525,8 +719,8 @@ int pareto_main(Args& args) {
     set.push_back({k, 0, 10, 0.4, "total_lagrangian"});
   }
 
+  for (Setting& s : set) s.label = plate_label(s);
   std::vector<double> cost(set.size(), 0.0), err(set.size(), std::nan(""));
-  json rows = json::array();
   std::ofstream csv(out / "pareto_plate.csv");
   csv << "kernel,h_over_dx,H_over_dx,formulation,cfl,dt_s,particles,steps,wall_s,cpu_s,"
          "period_s,period_error,amplitude_decay_2_periods,status\n";
@@ -571,7 +765,7 @@ int pareto_main(Args& args) {
     }
     cost[i] = cpu;
     err[i] = std::abs(perr);
-    std::printf("%-52s %9zu %8lld %9.2f %9.2f %11s\n", label(s).c_str(), n,
+    std::printf("%-52s %9zu %8lld %9.2f %9.2f %11s\n", s.label.c_str(), n,
                 static_cast<long long>(steps), wall, cpu,
                 std::isfinite(perr) ? fmt("%+.2f%%", 100 * perr).c_str() : status.c_str());
     std::fflush(stdout);
@@ -582,31 +776,8 @@ int pareto_main(Args& args) {
          << ',' << perr << ',' << decay << ',' << status;
     csv_rows.push_back(line.str());
   }
-  const std::vector<bool> front = pareto_front(cost, err);
-  // The front as a column of its own, in a second file, so the sweep's rows
-  // above are written as they finish.
-  std::ofstream fcsv(out / "pareto_plate_front.csv");
-  fcsv << "setting,cpu_s,abs_period_error\n";
-  for (std::size_t i = 0; i < set.size(); ++i) {
-    csv << csv_rows[i] << '\n';
-    if (front[i]) fcsv << label(set[i]) << ',' << cost[i] << ',' << err[i] << '\n';
-  }
-#ifdef GEARSPH_WITH_RENDER
-  pareto_chart(out / "pareto_plate.png", "Oscillating plate: period error against CPU time", set,
-               cost, err, front);
-  std::printf("chart: %s\n", (out / "pareto_plate.png").c_str());
-#else
-  std::printf("(built without the renderer: no PNG chart)\n");
-#endif
-  std::printf("Pareto front (cheapest first):\n");
-  std::vector<std::size_t> idx;
-  for (std::size_t i = 0; i < set.size(); ++i)
-    if (front[i]) idx.push_back(i);
-  std::sort(idx.begin(), idx.end(), [&](auto a, auto b) { return cost[a] < cost[b]; });
-  for (std::size_t i : idx)
-    std::printf("  %-52s cpu %8.2f s  |error| %.3g%%\n", label(set[i]).c_str(), cost[i],
-                100 * err[i]);
-  std::printf("table: %s\n", (out / "pareto_plate.csv").c_str());
+  report_sweep(out, "plate", "Oscillating plate: period error against CPU time", "period error",
+               set, cost, err, csv, csv_rows);
   return 0;
 }
 

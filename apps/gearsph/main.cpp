@@ -28,8 +28,9 @@ usage:
   gearsph bench [--quick] [--out DIR] [--no-pysph] [--skip-full] [--max-particles N]
       speed side by side: plate and gear throughput at 1 and 2 threads, PySPH's
       plate, cost per particle-step 1e3..1e6, memory, the paper's full case
-  gearsph bench pareto --out DIR [--quick] [--threads N]
-      error against cost over kernel, spacing, h/dx, CFL, UL/TL (CSV + PNG)
+  gearsph bench pareto --out DIR [--quick] [--threads N] [--cases plate,hertz,gear]
+      error against cost: plate (kernel, spacing, h/dx, CFL, UL/TL), Hertz p0
+      and gear root bending (kernel, spacing); CSV + PNG per case
   gearsph schema
       print the job schema (JSON Schema draft-07)
   gearsph geometry JOB.json --out DIR
