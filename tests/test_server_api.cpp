@@ -341,15 +341,22 @@ TEST(ServerJobs, EventsStreamProgressAndFinalStatus) {
   std::vector<SseEvent> all;
   std::string id;
   std::mutex id_mutex;
-  std::thread reader([&] {
-    auto mc = server.client(std::chrono::seconds(60));
-    mc.events("/events", [&](const SseEvent& e) {
-      all.push_back(e);
-      std::lock_guard<std::mutex> lock(id_mutex);
-      const json d = json::parse(e.data);
-      return !(e.event == "status" && d.value("jobID", "") == id && !id.empty() &&
-               is_final(d.value("status", "")));
-    });
+  // A jthread joins even when the test body throws, and the reader's own
+  // errors are reported, not fatal: either used to abort the whole binary.
+  std::string reader_error;
+  std::jthread reader([&] {
+    try {
+      auto mc = server.client(std::chrono::seconds(60));
+      mc.events("/events", [&](const SseEvent& e) {
+        all.push_back(e);
+        std::lock_guard<std::mutex> lock(id_mutex);
+        const json d = json::parse(e.data);
+        return !(e.event == "status" && d.value("jobID", "") == id && !id.empty() &&
+                 is_final(d.value("status", "")));
+      });
+    } catch (const std::exception& e) {
+      reader_error = e.what();
+    }
   });
   std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the stream is open
   {
@@ -364,6 +371,7 @@ TEST(ServerJobs, EventsStreamProgressAndFinalStatus) {
   EXPECT_EQ(head.status, 200u);
   EXPECT_EQ(head.header("Content-Type"), "text/event-stream");
   reader.join();
+  EXPECT_TRUE(reader_error.empty()) << "the /events reader failed: " << reader_error;
 
   ASSERT_FALSE(events.empty());
   EXPECT_EQ(events.front().event, "status");  // the stream starts with the job's status
