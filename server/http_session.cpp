@@ -269,8 +269,12 @@ void HttpSession::start_events(EventStream es) {
   head->chunked(true);
   auto sr = std::make_shared<http::response_serializer<http::empty_body>>(*head);
   stream_.expires_after(services_.config.timeouts.write);
+  // The hub may post pump() while the header is on its way: it must wait,
+  // as two writes on one stream at once are undefined (Beast asserts).
+  writing_ = true;
   http::async_write_header(
       stream_, *sr, [self = shared_from_this(), head, sr](beast::error_code ec, std::size_t) {
+        self->writing_ = false;
         if (ec) return self->close();
         self->watch_for_close();
         self->arm_keepalive();
