@@ -16,8 +16,9 @@ std::string HistoryStore::dataset_name(const std::string& column) {
 
 std::string HistoryStore::unit_of(const std::string& column) {
   // Unit suffixes used by the solver's column names, longest first.
-  static const std::array<std::pair<const char*, const char*>, 13> kSuffixes = {{
+  static const std::array<std::pair<const char*, const char*>, 14> kSuffixes = {{
       {"_J_per_m", "J/m"},
+      {"_Nm", "N*m"},
       {"_N_per_m", "N/m"},
       {"_kg_m_s", "kg*m/s"},
       {"_rad_s", "rad/s"},

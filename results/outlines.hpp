@@ -37,7 +37,7 @@ void write_scene_outlines(hid_t file, const SceneT& scene) {
                       {o.points.begin(), o.points.end()},
                       static_cast<bool>(o.closed)});
     }
-    write_outlines(file, list);
+    if (!list.empty()) write_outlines(file, list);  // no /outlines without outlines
   }
 }
 

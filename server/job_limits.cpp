@@ -5,17 +5,22 @@
 #include <cstdio>
 #include <limits>
 
+#ifdef GEARSPH_WITH_RESULTS
+#include "results/results_writer.hpp"
+#endif
+
 namespace gearsph::server {
 
 namespace {
 
-// Bytes per particle and snapshot in results.h5: position, velocity (2 + 1
-// padding each), stress xx yy xy zz, von Mises, density as doubles and a
-// body id (architecture.md, "Results file").
-constexpr double kSnapshotBytesPerParticle = 14 * 8;
-// History rows are stored twice (history.csv, /histories in results.h5);
-// about 40 columns of ~25 characters or 8 bytes.
-constexpr double kHistoryBytesPerRow = 40 * (25 + 8);
+// history.csv: one text row per sample, ~25 characters a value; the
+// runner's own columns (9) and the scene's, 16 leaving room.
+constexpr double kCsvBytesPerValue = 25;
+constexpr double kRunnerColumns = 16;
+// Bytes per particle and frame of results.h5 without the results layer's own
+// bound (results/results_writer.cpp, estimate_results_bytes): the frame
+// fields of results/results_layout.hpp, uncompressed.
+constexpr double kFrameBytesPerParticle = 136;
 constexpr double kFixedBytes = 1 << 20;  // job.json, summary.json, the XDMF sidecar
 
 std::string number(double v) {
@@ -65,9 +70,14 @@ JobEstimate estimate_job(const PreparedJob& job) {
   e.frames = job.frames;
   e.particle_steps = double(e.particles) * double(e.steps);
   const double rows = double(job.steps / std::max<std::int64_t>(1, job.history_every) + 2);
-  e.disk_bytes = static_cast<std::uint64_t>(double(e.frames) * double(e.particles) *
-                                                kSnapshotBytesPerParticle +
-                                            rows * kHistoryBytesPerRow + kFixedBytes);
+  const double columns = double(job.scene.columns.size()) + kRunnerColumns;
+#ifdef GEARSPH_WITH_RESULTS
+  const double h5 = double(results::estimate_results_bytes(job));
+#else
+  const double h5 =
+      double(e.frames) * double(e.particles) * kFrameBytesPerParticle + rows * columns * 8;
+#endif
+  e.disk_bytes = static_cast<std::uint64_t>(h5 + rows * columns * kCsvBytesPerValue + kFixedBytes);
   return e;
 }
 

@@ -4,6 +4,9 @@
 
 #include "apps/gearsph/cli.hpp"
 #include "apps/gearsph/progress.hpp"
+#ifdef GEARSPH_WITH_RESULTS
+#include "results/results_writer.hpp"
+#endif
 #include "solver/job/job.hpp"
 #include "solver/run/execute.hpp"
 
@@ -44,6 +47,12 @@ int cmd_run(Args& args) {
         job.job.at("name").get<std::string>().c_str(), job.scene.type.c_str(), sim.particles.n,
         static_cast<long long>(job.steps), sim.dt, job.time_step.chosen_by.c_str(),
         job.time_step.courant, job.time_step.courant_limit, sim.threads);
+#ifdef GEARSPH_WITH_RESULTS
+    // Disk use, stated before the run: an upper bound (ResultsRun tests).
+    std::fprintf(stderr, "gearsph run: %lld frames (output.frames): results.h5 at most %.3g MB\n",
+                 static_cast<long long>(job.frames),
+                 1e-6 * double(results::estimate_results_bytes(job)));
+#endif
   }
   ProgressPrinter printer(quiet);
   ExecuteOptions options;

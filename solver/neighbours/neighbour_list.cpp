@@ -59,9 +59,8 @@ void NeighbourList::build(const Particles& p, double cutoff, PairSelection selec
     // Sorted rows: deterministic order and forward memory access.
     std::sort(j.begin() + rows[i], j.begin() + rows[i + 1]);
   }
-  gx.assign(j.size(), 0.0);
-  gy.assign(j.size(), 0.0);
-  w.assign(j.size(), 0.0);
+  dw_r.assign(j.size(), 0.0);
+  if (!w.empty()) w.assign(j.size(), 0.0);
   x_built_.assign(p.x.begin(), p.x.end());
   y_built_.assign(p.y.begin(), p.y.end());
   ++builds_;

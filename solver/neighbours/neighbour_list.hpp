@@ -6,8 +6,9 @@
 // more than half the skin since the last build (particles move ~1e-8 m per
 // step, so a rebuild every few thousand steps).
 //
-// Per entry the kernel gradient grad_i W_ij (and W_ij) are cached at the
-// current positions, computed once per step and used by every pair loop.
+// Per entry W'(r_ij)/r_ij is cached at the current positions, computed once
+// per step and used by every pair loop: grad_i W_ij = dw_r (x_i - x_j), so
+// one number per pair instead of two (12 bytes an entry with the index).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -30,9 +31,9 @@ class NeighbourList {
   // rows[i] .. rows[i+1] index the entries of particle i.
   std::vector<std::uint32_t> rows;
   std::vector<std::uint32_t> j;
-  // Cached per entry, refreshed each step by the pair loops.
-  std::vector<double> gx, gy;  // grad_i W_ij
-  std::vector<double> w;       // W_ij
+  // Cached per entry, refreshed each step by the velocity-gradient loop.
+  std::vector<double> dw_r;  // W'(r_ij) / r_ij
+  std::vector<double> w;     // W_ij, sized only when a term needs it
 
   // Builds from the current positions (or reference positions when
   // `reference` is set, for total-Lagrangian lists that never change).

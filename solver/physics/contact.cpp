@@ -102,7 +102,8 @@ void contact_forces(Simulation& sim, double dt) {
     if (surface) {
 #pragma omp for schedule(static)
       for (std::size_t i = 0; i < n; ++i) {
-        if (!std::isfinite(p.surf_depth[i])) continue;
+        // Only particles with candidates need their normal (most have none).
+        if (nl.rows[i] == nl.rows[i + 1] || !std::isfinite(p.surf_depth[i])) continue;
         const double ci = std::cos(p.rot[i]), si = std::sin(p.rot[i]);
         normal_x[i] = ci * p.surf_nx[i] - si * p.surf_ny[i];
         normal_y[i] = si * p.surf_nx[i] + ci * p.surf_ny[i];

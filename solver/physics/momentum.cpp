@@ -33,16 +33,16 @@ void momentum_loop(Simulation& sim, double dt, double inv_w_dx) {
     double ax = 0, ay = 0, power = 0;
     for (std::uint32_t k = nl.rows[i]; k < nl.rows[i + 1]; ++k) {
       const std::uint32_t j = nl.j[k];
-      const double gx = nl.gx[k], gy = nl.gy[k];
+      const double dx = xi - p.x[j], dy = yi - p.y[j];
+      const double dw_r = nl.dw_r[k];  // W'(r)/r = -w_ij
+      const double gx = dw_r * dx, gy = dw_r * dy;
       // Stress: sigma_i/rho_i^2 G_ij - sigma_j/rho_j^2 G_ji (corrected
       // gradients, kernel_correction.hpp): linear blocks act on grad_i W_ij,
       // quadratic blocks on -w_ij (dx^2, dx dy, dy^2).
       double fx = (qxx + p.qxx[j]) * gx + (qxy + p.qxy[j]) * gy;
       double fy = (qyx + p.qyx[j]) * gx + (qyy + p.qyy[j]) * gy;
-      const double dx = xi - p.x[j], dy = yi - p.y[j];
       const double r2 = dx * dx + dy * dy;
       if constexpr (kQuadratic) {
-        const double dw_r = (gx * dx + gy * dy) / r2;  // W'(r)/r = -w_ij
         const double q0 = dw_r * dx * dx, q1 = dw_r * dx * dy, q2 = dw_r * dy * dy;
         fx += (qqx0 - p.qqx0[j]) * q0 + (qqx1 - p.qqx1[j]) * q1 + (qqx2 - p.qqx2[j]) * q2;
         fy += (qqy0 - p.qqy0[j]) * q0 + (qqy1 - p.qqy1[j]) * q1 + (qqy2 - p.qqy2[j]) * q2;

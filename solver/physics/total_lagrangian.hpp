@@ -34,6 +34,11 @@ struct ReferencePairs {
   // sum_j V0_j B_i grad0_i W_ij per particle: P_i is constant over row i, so
   // its share of the momentum sum is P_i times this, with no per-pair work.
   std::vector<double> sgx, sgy;
+  // Rows are sorted by j: entries upper[i] .. rows[i+1] of row i have j > i,
+  // each unordered pair once (the viscosity is evaluated once per pair).
+  std::vector<std::uint32_t> upper;
+  // Per-thread sums of the pair-once viscosity: [threads][x | y][n].
+  std::vector<double> pair_acc;
   // Lame constants per body, so that the step divides nothing per particle.
   std::vector<double> lambda_body, mu_body;
   bool built() const { return !rows.empty(); }

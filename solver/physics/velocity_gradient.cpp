@@ -46,6 +46,7 @@ void velocity_gradient_loop(Simulation& sim, const K& kernel, double half_dt) {
   const bool keep_w = sim.method.artificial_stress.enabled();
   const double h = sim.h();
   const std::size_t n = p.n;
+  if (keep_w && nl.w.size() != nl.j.size()) nl.w.assign(nl.j.size(), 0.0);
 
 #pragma omp parallel for num_threads(sim.threads) schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -62,8 +63,7 @@ void velocity_gradient_loop(Simulation& sim, const K& kernel, double half_dt) {
       const double r = std::sqrt(dx * dx + dy * dy);
       const double dw_r = kernel.dW(r) / r;  // = -w_ij; r > 0: particles never coincide
       const double gx = dw_r * dx, gy = dw_r * dy;
-      nl.gx[k] = gx;
-      nl.gy[k] = gy;
+      nl.dw_r[k] = dw_r;
       if (keep_w) nl.w[k] = kernel.W(r);
       const double vol_j = p.mass[j] / p.rho[j];
       const double dvx = p.vx[j] - vxi, dvy = p.vy[j] - vyi;
