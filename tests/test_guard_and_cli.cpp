@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <utility>
 
 #include "solver/job/job.hpp"
 #include "solver/run/runner.hpp"
@@ -59,6 +61,33 @@ int run_cli(const std::string& args) {
   const std::string cmd = std::string(GEARSPH_BINARY) + " " + args + " 2>/dev/null";
   const int status = std::system(cmd.c_str());
   return WEXITSTATUS(status);
+}
+
+// Output of `gearsph ARGS` (stdout) and its exit status.
+std::pair<std::string, int> cli_output(const std::string& args) {
+  const std::string cmd = std::string(GEARSPH_BINARY) + " " + args + " 2>/dev/null";
+  std::string out;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return {"", -1};
+  char buf[4096];
+  for (std::size_t got; (got = std::fread(buf, 1, sizeof buf, pipe)) > 0;) out.append(buf, got);
+  const int status = pclose(pipe);
+  return {out, WEXITSTATUS(status)};
+}
+
+TEST(Cli, HelpAfterACommandPrintsThatCommandsUsage) {
+  const auto [run, run_status] = cli_output("run --help");
+  EXPECT_EQ(run_status, 0);
+  EXPECT_NE(run.find("gearsph run JOB.json --out DIR"), std::string::npos) << run;
+  EXPECT_EQ(run.find("gearsph serve"), std::string::npos) << "only the command's own lines";
+  const auto [bench, bench_status] = cli_output("bench pareto -h");
+  EXPECT_EQ(bench_status, 0);
+  // Both bench lines: `gearsph bench` and `gearsph bench pareto`.
+  EXPECT_NE(bench.find("gearsph bench [--quick]"), std::string::npos) << bench;
+  EXPECT_NE(bench.find("gearsph bench pareto --out DIR"), std::string::npos) << bench;
+  const auto [unknown, unknown_status] = cli_output("frobnicate --help");
+  EXPECT_EQ(unknown_status, 0);
+  EXPECT_NE(unknown.find("usage:"), std::string::npos) << "the whole usage for an unknown command";
 }
 
 TEST(Cli, RunWritesSummaryAndHistory) {

@@ -78,6 +78,11 @@ TEST_F(RenderCli, RefusesWhatItCannotDraw) {
   EXPECT_EQ(gearsph("render " + run + " --frame 99 --out " + out), 2);
   EXPECT_EQ(gearsph("plot " + run + " --columns no_such_column --out " + out), 2);
   EXPECT_EQ(gearsph("render " + run), 2);  // no --out
+  // A usage error (2), as the HTTP route answers 400, not a failed render (1).
+  EXPECT_EQ(gearsph("render " + run + " --zoom 0.05,0,0,0.01 --out " + out), 2);
+  EXPECT_EQ(gearsph("render " + run + " --zoom 0,0,x,0.01 --out " + out), 2);
+  // Another file beside results.h5 is not silently replaced by it.
+  EXPECT_EQ(gearsph("render " + run + "/other.h5 --out " + out), 2);
   EXPECT_FALSE(fs::exists(dir_ / "bad.png"));
 }
 

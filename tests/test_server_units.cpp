@@ -6,15 +6,55 @@
 #include "server/documents.hpp"
 #include "server/event_hub.hpp"
 #include "server/http_types.hpp"
+#include "server/job_limits.hpp"
 #include "server/job_store.hpp"
 #include "server/range_file.hpp"
 #include "server/router.hpp"
 #include "server/static_files.hpp"
 #include "server/study.hpp"
+#include "solver/job/job.hpp"
+#include "solver/run/execute.hpp"
+#ifdef GEARSPH_WITH_RENDER  // the results layer is built too
+#include "results/register_outputs.hpp"
+#endif
 #include "tests/test_server_support.hpp"
 
 namespace gearsph::server::testing {
 namespace {
+
+// The service refuses jobs by this estimate and the dashboard shows it: it
+// must bound what the job directory really takes.
+TEST(JobLimits, DiskEstimateBoundsTheWholeJobDirectory) {
+  const nlohmann::json job = nlohmann::json::parse(R"({
+    "name": "disk-estimate",
+    "scene": {"type": "plate", "length_m": 0.1, "thickness_m": 0.01},
+    "discretization": {"spacing_m": 0.002},
+    "time": {"end_s": 0.002},
+    "output": {"frames": 40, "history_points": 500}})");
+#ifdef GEARSPH_WITH_RENDER
+  results::register_outputs();  // results.h5 and results.xmf are written too
+#endif
+  PreparedJob prepared = prepare_job(job, 1);
+  const JobEstimate estimate = estimate_job(prepared);
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("gearsph-disk-estimate-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  ExecuteOptions options;
+  options.threads = 1;
+  ASSERT_EQ(execute_job(job, dir, options).run.status, "completed");
+  std::uint64_t used = 0;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) {
+    if (e.is_regular_file()) used += e.file_size();
+  }
+  EXPECT_GE(estimate.disk_bytes, used);
+#ifdef GEARSPH_WITH_RENDER
+  EXPECT_TRUE(std::filesystem::exists(dir / "results.h5"));
+#endif
+  std::printf("  estimate %llu bytes, the job directory %llu\n",
+              static_cast<unsigned long long>(estimate.disk_bytes),
+              static_cast<unsigned long long>(used));
+  std::filesystem::remove_all(dir);
+}
 
 NewJob new_job(const std::string& name = "j") {
   NewJob j;

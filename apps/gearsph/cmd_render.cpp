@@ -1,5 +1,6 @@
 // gearsph render / gearsph plot: pictures of a finished run directory, the
 // same the service draws (GET /jobs/{id}/images), without a server.
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -30,6 +31,8 @@ void write_png(const std::string& path, const std::string& bytes) {
   if (!f) throw std::runtime_error("cannot write " + path);
 }
 
+constexpr const char* kResultsFileName = "results.h5";
+
 }  // namespace
 
 int cmd_render(Args& args) {
@@ -40,14 +43,34 @@ int cmd_render(Args& args) {
   request.frame = args.integer("frame", -1);
   if (const auto zoom = args.option("zoom")) {
     const std::vector<std::string> v = split(*zoom, ',');
-    if (v.size() != 4) throw std::invalid_argument("--zoom takes x0,y0,x1,y1 in metres");
-    request.zoom_m = {std::stod(v[0]), std::stod(v[1]), std::stod(v[2]), std::stod(v[3])};
+    const std::string usage = "--zoom takes x0,y0,x1,y1 in metres with x1 > x0 and y1 > y0";
+    if (v.size() != 4) throw std::invalid_argument(usage + ", got '" + *zoom + "'");
+    std::array<double, 4> z{};
+    for (std::size_t k = 0; k < 4; ++k) {
+      std::size_t used = 0;
+      try {
+        z[k] = std::stod(v[k], &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != v[k].size() || !std::isfinite(z[k])) {
+        throw std::invalid_argument(usage + ": '" + v[k] + "' is not a number");
+      }
+    }
+    if (!(z[2] > z[0] && z[3] > z[1])) throw std::invalid_argument(usage + ", got '" + *zoom + "'");
+    request.zoom_m = {z[0], z[1], z[2], z[3]};
   }
   const std::vector<std::string> pos = args.positional();
   if (pos.size() != 1) throw std::invalid_argument("render: one run directory or results.h5");
   // A run directory, or its results.h5.
   std::filesystem::path dir = pos.front();
-  if (dir.extension() == ".h5") dir = dir.parent_path().empty() ? "." : dir.parent_path();
+  if (dir.extension() == ".h5") {
+    if (dir.filename() != kResultsFileName) {
+      throw std::invalid_argument("render reads a run's " + std::string(kResultsFileName) +
+                                  " (or its directory), not " + dir.string());
+    }
+    dir = dir.parent_path().empty() ? "." : dir.parent_path();
+  }
   if (out.empty()) throw std::invalid_argument("render: --out is required");
   if (!frames.empty() && frames != "all") {
     throw std::invalid_argument("render: --frames takes 'all' (or use --frame N)");
@@ -82,8 +105,13 @@ int cmd_render(Args& args) {
     write_png(out + name, image.png);
     ++written;
   }
+  if (written == 0) {
+    std::fprintf(stderr, "gearsph render: %s has no committed frames (output.frames 0?)\n",
+                 dir.string().c_str());
+    return 2;
+  }
   std::printf("wrote %d frames to %s\n", written, out.c_str());
-  return written > 0 ? 0 : 2;
+  return 0;
 }
 
 // History columns of DIR/history.csv against time, one series each.

@@ -51,6 +51,35 @@ usage:
 exit status: 0 success, 1 error, 2 invalid job or usage, 3 run diverged, 4 cancelled
 )";
 
+// The usage lines of one command (its `  gearsph CMD ...` lines and their
+// indented description), or all of them if `cmd` has none.
+std::string command_usage(const std::string& cmd) {
+  std::string out, line;
+  bool inside = false;
+  for (const char* c = kUsage; *c; ++c) {
+    if (*c != '\n') {
+      line += *c;
+      continue;
+    }
+    const std::string head = "  gearsph " + cmd;
+    if (line.rfind("  gearsph ", 0) == 0) {
+      inside = line.rfind(head, 0) == 0 && (line.size() == head.size() || line[head.size()] == ' ');
+    } else if (line.rfind("      ", 0) != 0) {
+      inside = false;
+    }
+    if (inside) out += line + "\n";
+    line.clear();
+  }
+  return out.empty() ? std::string(kUsage) : "usage:\n" + out;
+}
+
+bool asks_for_help(int argc, char** argv) {
+  for (int i = 2; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 namespace gearsph::cli {
@@ -86,6 +115,10 @@ int main(int argc, char** argv) {
     return argc < 2 ? 2 : 0;
   }
   const std::string cmd = argv[1];
+  if (asks_for_help(argc, argv)) {  // `gearsph render --help`
+    std::fputs(command_usage(cmd).c_str(), stdout);
+    return 0;
+  }
   gearsph::cli::Args args(argc, argv, 2);
   try {
     if (cmd == "run") return gearsph::cli::cmd_run(args);
