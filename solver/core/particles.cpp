@@ -23,6 +23,13 @@ void Particles::resize(std::size_t count) {
   }
 }
 
+void Particles::release_updated_lagrangian() {
+  for (auto* v : {&drho, &lxx, &lxy, &lyx, &lyy, &bqx0, &bqx1, &bqx2, &bqy0, &bqy1, &bqy2, &rxx,
+                  &ryy,  &rxy, &qxx, &qxy, &qyx, &qyy,  &qqx0, &qqx1, &qqx2, &qqy0, &qqy1, &qqy2}) {
+    std::vector<double>().swap(*v);
+  }
+}
+
 void Particles::add(double px, double py, double m, double density, int body_index,
                     int motion_index) {
   const std::size_t i = n;

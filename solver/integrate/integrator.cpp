@@ -101,9 +101,9 @@ void step(Simulation& sim) {
   refresh_neighbours(sim);                              // Verlet lists, skin used up?
   forces(sim, dt);                                      // rho, S at n+1; a^{n+1}
   external_forces(sim, dt);                             // loads, contact, damping
-  kick(sim, 0.5 * dt, false);                           // v^{n+1}
-  sim.energy.drive_work += dt * drive_power(sim);
-  sim.energy.external_work += dt * load_power(sim);
+  const KickPowers power = kick(sim, 0.5 * dt, false);  // v^{n+1}
+  sim.energy.drive_work += dt * power.drive;
+  sim.energy.external_work += dt * power.load;
 }
 
 }  // namespace gearsph::integrate

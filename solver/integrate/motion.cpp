@@ -30,16 +30,35 @@ void spin(Simulation& sim, std::size_t k, double dt_half) {
   m.omega += dt_half * m.alpha;
 }
 
+// What the constraint of particle i supplies: what the internal, contact and
+// load forces would otherwise change in the prescribed motion.
+double drive_power(const Particles& p, const Motion& m, std::size_t i) {
+  if (m.kind == Motion::Kind::Free) return 0.0;
+  const double ax = p.ax[i] + p.ext_ax[i], ay = p.ay[i] + p.ext_ay[i];
+  if (m.kind == Motion::Kind::GuidedX) return -p.mass[i] * ay * p.vy[i];  // v_y = 0: no work
+  return -p.mass[i] * (ax * p.vx[i] + ay * p.vy[i]);
+}
+
 }  // namespace
 
-void kick(Simulation& sim, double dt_half, bool before_drift) {
+KickPowers kick(Simulation& sim, double dt_half, bool before_drift) {
   for (std::size_t k = 0; k < sim.motions.size(); ++k) {
-    if (sim.motions[k].torque_driven) spin(sim, k, dt_half);
+    Motion& m = sim.motions[k];
+    if (m.torque_driven) spin(sim, k, dt_half);
+    if (before_drift && m.kind == Motion::Kind::Rotation) {
+      // The angle the drift will place the group at: x^{n+1}.
+      const double a = m.torque_driven ? m.angle + 2.0 * dt_half * m.omega
+                                       : m.omega * (sim.time + 2.0 * dt_half);
+      m.cos_next = std::cos(a);
+      m.sin_next = std::sin(a);
+    }
   }
   Particles& p = sim.particles;
   const std::size_t n = p.n;
   const Motion* motions = sim.motions.data();
-#pragma omp parallel for num_threads(sim.threads) schedule(static)
+  const double ramp = load_ramp(sim);
+  double drive = 0.0, load = 0.0;
+#pragma omp parallel for num_threads(sim.threads) schedule(static) reduction(+ : drive, load)
   for (std::size_t i = 0; i < n; ++i) {
     const Motion& m = motions[p.motion[i]];
     switch (m.kind) {
@@ -62,9 +81,7 @@ void kick(Simulation& sim, double dt_half, bool before_drift) {
         if (before_drift) {
           // The chord velocity (x^{n+1} - x^n)/dt of the exact rotation: its
           // gradient, mapped to mid-step, is a pure spin (no dilatation).
-          const double a = m.torque_driven ? m.angle + 2.0 * dt_half * m.omega
-                                           : m.omega * (sim.time + 2.0 * dt_half);
-          const double c = std::cos(a), s = std::sin(a);
+          const double c = m.cos_next, s = m.sin_next;
           const double rx = p.x0[i] - m.cx, ry = p.y0[i] - m.cy;
           p.vx[i] = (m.cx + c * rx - s * ry - p.x[i]) / (2.0 * dt_half);
           p.vy[i] = (m.cy + s * rx + c * ry - p.y[i]) / (2.0 * dt_half);
@@ -74,7 +91,20 @@ void kick(Simulation& sim, double dt_half, bool before_drift) {
         }
         break;
     }
+    if (!before_drift) {
+      drive += drive_power(p, m, i);
+      load += ramp * p.mass[i] * (p.load_ax[i] * p.vx[i] + p.load_ay[i] * p.vy[i]);
+    }
   }
+  // A torque-driven group is also accelerated along its rotation: the drive
+  // supplies that too (in all, the applied torque's power less what goes
+  // into the attached inertia, which is not among the particles' energy).
+  if (!before_drift) {
+    for (const Motion& m : sim.motions) {
+      if (m.torque_driven) drive += m.group_inertia * m.alpha * m.omega;
+    }
+  }
+  return {drive, load};
 }
 
 std::size_t drift(Simulation& sim, double dt) {
@@ -107,7 +137,7 @@ std::size_t drift(Simulation& sim, double dt) {
         p.y[i] = p.y0[i] + m.vy * t;
         break;
       case Motion::Kind::Rotation: {
-        const double c = std::cos(m.angle), s = std::sin(m.angle);
+        const double c = m.cos_next, s = m.sin_next;  // of m.angle, as just set
         const double rx = p.x0[i] - m.cx, ry = p.y0[i] - m.cy;
         p.x[i] = m.cx + c * rx - s * ry;
         p.y[i] = m.cy + s * rx + c * ry;
@@ -120,42 +150,8 @@ std::size_t drift(Simulation& sim, double dt) {
   return outside;
 }
 
-double drive_power(const Simulation& sim) {
-  const Particles& p = sim.particles;
-  double power = 0.0;
-  for (std::size_t i = 0; i < p.n; ++i) {
-    const Motion& m = sim.motions[p.motion[i]];
-    if (m.kind == Motion::Kind::Free) continue;
-    // The constraint supplies what the internal, contact and load forces
-    // would otherwise change in the prescribed motion.
-    const double ax = p.ax[i] + p.ext_ax[i], ay = p.ay[i] + p.ext_ay[i];
-    if (m.kind == Motion::Kind::GuidedX) {
-      power -= p.mass[i] * ay * p.vy[i];  // v_y = 0: the guide does no work
-    } else {
-      power -= p.mass[i] * (ax * p.vx[i] + ay * p.vy[i]);
-    }
-  }
-  // A torque-driven group is also accelerated along its rotation: the drive
-  // supplies that too (in all, the applied torque's power less what goes
-  // into the attached inertia, which is not among the particles' energy).
-  for (const Motion& m : sim.motions) {
-    if (m.torque_driven) power += m.group_inertia * m.alpha * m.omega;
-  }
-  return power;
-}
-
 double load_ramp(const Simulation& sim) {
   return sim.load_ramp_s > 0.0 ? std::min(1.0, sim.time / sim.load_ramp_s) : 1.0;
-}
-
-double load_power(const Simulation& sim) {
-  const Particles& p = sim.particles;
-  const double ramp = load_ramp(sim);
-  double power = 0.0;
-  for (std::size_t i = 0; i < p.n; ++i) {
-    power += ramp * p.mass[i] * (p.load_ax[i] * p.vx[i] + p.load_ay[i] * p.vy[i]);
-  }
-  return power;
 }
 
 }  // namespace gearsph::integrate
