@@ -675,12 +675,16 @@ TEST(ResultsWriter, XdmfDocumentOfNoFramesIsStillWellFormed) {
 // kills land inside the writer; every run uses one thread, which makes the
 // killed runs' frames bit-identical to the reference run's.
 
-const json kCrashJob = json::parse(R"({
-  "name": "crash",
-  "scene": {"type": "plate", "length_m": 0.1, "thickness_m": 0.01},
-  "discretization": {"spacing_m": 0.0015},
-  "time": {"end_s": 0.01},
-  "output": {"frames": 500}})");
+// A 0.1 m x 0.01 m plate run for the crash tests.
+json crash_job(const std::string& name, double spacing_m, double end_s, int frames) {
+  return {{"name", name},
+          {"scene", {{"type", "plate"}, {"length_m", 0.1}, {"thickness_m", 0.01}}},
+          {"discretization", {{"spacing_m", spacing_m}}},
+          {"time", {{"end_s", end_s}}},
+          {"output", {{"frames", frames}}}};
+}
+
+const json kCrashJob = crash_job("crash", 0.0015, 0.01, 500);
 
 // `gearsph run job --out out` on one thread, with `extra_env` added to this
 // process's environment.
@@ -856,12 +860,7 @@ TEST(ResultsCrash, KilledRunsKeepEveryCommittedFrame) {
 // SIGKILL between every two writes of a run (tests/support/crash_at_write.cpp,
 // preloaded): the moments random kills almost never reach, inside a flush.
 
-const json kCrashPointJob = json::parse(R"({
-  "name": "crash-points",
-  "scene": {"type": "plate", "length_m": 0.1, "thickness_m": 0.01},
-  "discretization": {"spacing_m": 0.002},
-  "time": {"end_s": 0.0008},
-  "output": {"frames": 8}})");
+const json kCrashPointJob = crash_job("crash-points", 0.002, 0.0008, 8);
 
 std::vector<std::string> preload_env(const std::string& setting) {
   // A sanitized gearsph wants its runtime first in the library list; the

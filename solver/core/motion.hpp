@@ -22,7 +22,7 @@ struct Motion {
   double omega = 0.0;         // Rotation rate [rad/s]; the initial one when torque-driven
   double angle = 0.0;         // Rotation: turned since t = 0 [rad]
   // cos and sin of the angle at the end of the step being taken, set once
-  // per step by the opening kick (not once per particle).
+  // per group by the opening kick and by the drift (not once per particle).
   double cos_next = 1.0, sin_next = 0.0;
   // A torque-driven rotation is a rigid body: omega and angle are state,
   // advanced from I dω/dt = T + the moment of the forces on the group

@@ -85,7 +85,10 @@ void forces(Simulation& sim, double dt) {
 }  // namespace
 
 void initialise(Simulation& sim) {
-  if (total_lagrangian(sim)) physics::total_lagrangian_setup(sim);
+  if (total_lagrangian(sim)) {
+    physics::total_lagrangian_setup(sim);
+    sim.particles.release_updated_lagrangian();  // this run never takes a UL step
+  }
   refresh_neighbours(sim);
   forces(sim, 0.0);  // accelerations at t = 0, stress unchanged
   external_forces(sim, 0.0);

@@ -115,6 +115,8 @@ std::size_t drift(Simulation& sim, double dt) {
     if (m.kind != Motion::Kind::Rotation) continue;
     // Held: placed exactly at omega t, no drift over a million steps.
     m.angle = m.torque_driven ? m.angle + dt * m.omega : m.omega * t;
+    m.cos_next = std::cos(m.angle);  // once per group, not per particle
+    m.sin_next = std::sin(m.angle);
   }
   const Motion* motions = sim.motions.data();
   const Box box = sim.domain;
@@ -137,7 +139,7 @@ std::size_t drift(Simulation& sim, double dt) {
         p.y[i] = p.y0[i] + m.vy * t;
         break;
       case Motion::Kind::Rotation: {
-        const double c = m.cos_next, s = m.sin_next;  // of m.angle, as just set
+        const double c = m.cos_next, s = m.sin_next;
         const double rx = p.x0[i] - m.cx, ry = p.y0[i] - m.cy;
         p.x[i] = m.cx + c * rx - s * ry;
         p.y[i] = m.cy + s * rx + c * ry;

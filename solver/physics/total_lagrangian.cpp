@@ -94,7 +94,6 @@ void total_lagrangian_setup(Simulation& sim) {
       }
     }
   });
-  p.release_updated_lagrangian();
   rp.lambda_body.clear();
   rp.mu_body.clear();
   for (const Body& b : sim.bodies) {
