@@ -50,14 +50,14 @@ void BM_TotalLagrangianStress(benchmark::State& state, const char* scene) {
   gearsph::PreparedJob job = prepared(scene);
   for (auto _ : state) gearsph::physics::total_lagrangian_stress(job.scene.sim);
   state.SetItemsProcessed(state.iterations() *
-                          static_cast<std::int64_t>(job.scene.sim.reference.j.size()));
+                          static_cast<std::int64_t>(job.scene.sim.reference.entries()));
 }
 
 void BM_TotalLagrangianMomentum(benchmark::State& state, const char* scene) {
   gearsph::PreparedJob job = prepared(scene);
   for (auto _ : state) gearsph::physics::total_lagrangian_momentum(job.scene.sim, 0.0);
   state.SetItemsProcessed(state.iterations() *
-                          static_cast<std::int64_t>(job.scene.sim.reference.j.size()));
+                          static_cast<std::int64_t>(job.scene.sim.reference.entries()));
 }
 
 void BM_Contact(benchmark::State& state) {

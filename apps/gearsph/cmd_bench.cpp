@@ -124,7 +124,7 @@ Timing time_steps(const json& job, int threads, std::int64_t steps) {
   t.cpu_s = cpu_seconds() - c0;
   t.wall_s = std::chrono::duration<double>(Clock::now() - w0).count();
   t.particles = sim.particles.n;
-  t.pairs = sim.reference.j.size() + sim.neighbours.entries() + sim.contacts.entries();
+  t.pairs = sim.reference.entries() + sim.neighbours.entries() + sim.contacts.entries();
   t.steps = steps;
   t.dt = sim.dt;
   const Memory after = memory_now();

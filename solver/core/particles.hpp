@@ -56,9 +56,10 @@ struct Particles {
 
   void resize(std::size_t count);
   // Frees the arrays only the updated-Lagrangian step uses (density rate,
-  // velocity gradient, quadratic correction, artificial stress, the cached
-  // sigma/rho^2 C blocks): 24 doubles a particle a total-Lagrangian run
-  // never touches. A later resize() brings them back.
+  // velocity gradient, gradient correction, artificial stress, the cached
+  // sigma/rho^2 C blocks): 28 doubles a particle a total-Lagrangian run
+  // never touches (its corrections live in its pair gradients). A later
+  // resize() brings them back.
   void release_updated_lagrangian();
   void add(double px, double py, double m, double density, int body_index, int motion_index);
 

@@ -59,7 +59,7 @@ void check_health(const Simulation& sim) {
 
 void throw_divergence(const Simulation& sim) {
   check_health(sim);
-  // check_health throws whenever drift() saw a particle outside; reaching
+  // check_health throws whenever kick_drift() saw a particle outside; reaching
   // here means the two disagree, which is a bug worth reporting plainly.
   throw DivergenceError("divergence guard: a particle left the domain but none was found", sim.step,
                         -1, "position", 0.0);

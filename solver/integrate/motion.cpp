@@ -39,19 +39,109 @@ double drive_power(const Particles& p, const Motion& m, std::size_t i) {
   return -p.mass[i] * (ax * p.vx[i] + ay * p.vy[i]);
 }
 
+// The angle of each driven rotation at x^{n+1}, once per group.
+void place_rotations(Simulation& sim, double dt) {
+  const double t = sim.time + dt;
+  for (Motion& m : sim.motions) {
+    if (m.kind != Motion::Kind::Rotation) continue;
+    // Held: placed exactly at omega t, no drift over a million steps.
+    m.angle = m.torque_driven ? m.angle + dt * m.omega : m.omega * t;
+    m.cos_next = std::cos(m.angle);
+    m.sin_next = std::sin(m.angle);
+  }
+}
+
+// Half-step velocity of particle i. Before the drift a driven rotation gets
+// the chord velocity (x^{n+1} - x^n)/dt of its exact placement, whose
+// gradient, mapped to mid-step, is a pure spin (no dilatation); after it,
+// the velocity at the new position.
+inline void kick_particle(Particles& p, const Motion& m, std::size_t i, double dt_half,
+                          bool before_drift) {
+  switch (m.kind) {
+    case Motion::Kind::Free:
+      p.vx[i] += dt_half * (p.ax[i] + p.ext_ax[i]);
+      p.vy[i] += dt_half * (p.ay[i] + p.ext_ay[i]);
+      break;
+    case Motion::Kind::GuidedX:
+      p.vx[i] += dt_half * (p.ax[i] + p.ext_ax[i]);
+      p.vy[i] = 0.0;
+      break;
+    case Motion::Kind::Fixed:
+      p.vx[i] = p.vy[i] = 0.0;
+      break;
+    case Motion::Kind::Velocity:
+      p.vx[i] = m.vx;
+      p.vy[i] = m.vy;
+      break;
+    case Motion::Kind::Rotation:
+      if (before_drift) {
+        const double c = m.cos_next, s = m.sin_next;
+        const double rx = p.x0[i] - m.cx, ry = p.y0[i] - m.cy;
+        p.vx[i] = (m.cx + c * rx - s * ry - p.x[i]) / (2.0 * dt_half);
+        p.vy[i] = (m.cy + s * rx + c * ry - p.y[i]) / (2.0 * dt_half);
+      } else {
+        p.vx[i] = -m.omega * (p.y[i] - m.cy);
+        p.vy[i] = m.omega * (p.x[i] - m.cx);
+      }
+      break;
+  }
+}
+
+// New position of particle i at time t = sim.time + dt.
+inline void drift_particle(Particles& p, const Motion& m, std::size_t i, double dt, double t) {
+  switch (m.kind) {
+    case Motion::Kind::Free:
+    case Motion::Kind::GuidedX:
+      p.x[i] += dt * p.vx[i];
+      p.y[i] += dt * p.vy[i];
+      break;
+    case Motion::Kind::Fixed:
+      p.x[i] = p.x0[i];
+      p.y[i] = p.y0[i];
+      break;
+    case Motion::Kind::Velocity:
+      p.x[i] = p.x0[i] + m.vx * t;
+      p.y[i] = p.y0[i] + m.vy * t;
+      break;
+    case Motion::Kind::Rotation: {
+      const double c = m.cos_next, s = m.sin_next;
+      const double rx = p.x0[i] - m.cx, ry = p.y0[i] - m.cy;
+      p.x[i] = m.cx + c * rx - s * ry;
+      p.y[i] = m.cy + s * rx + c * ry;
+      break;
+    }
+  }
+}
+
 }  // namespace
 
-KickPowers kick(Simulation& sim, double dt_half, bool before_drift) {
+std::size_t kick_drift(Simulation& sim, double dt) {
+  const double dt_half = 0.5 * dt;
   for (std::size_t k = 0; k < sim.motions.size(); ++k) {
-    Motion& m = sim.motions[k];
-    if (m.torque_driven) spin(sim, k, dt_half);
-    if (before_drift && m.kind == Motion::Kind::Rotation) {
-      // The angle the drift will place the group at: x^{n+1}.
-      const double a = m.torque_driven ? m.angle + 2.0 * dt_half * m.omega
-                                       : m.omega * (sim.time + 2.0 * dt_half);
-      m.cos_next = std::cos(a);
-      m.sin_next = std::sin(a);
-    }
+    if (sim.motions[k].torque_driven) spin(sim, k, dt_half);
+  }
+  place_rotations(sim, dt);
+  Particles& p = sim.particles;
+  const std::size_t n = p.n;
+  const Motion* motions = sim.motions.data();
+  const Box box = sim.domain;
+  const double t = sim.time + dt;
+  std::size_t outside = 0;
+  // One pass: each particle's kick needs only its own acceleration.
+#pragma omp parallel for num_threads(sim.threads) schedule(static) reduction(+ : outside)
+  for (std::size_t i = 0; i < n; ++i) {
+    const Motion& m = motions[p.motion[i]];
+    kick_particle(p, m, i, dt_half, true);
+    drift_particle(p, m, i, dt, t);
+    // NaN fails both comparisons, so a non-finite position counts as outside.
+    outside += box.contains(p.x[i], p.y[i]) ? 0 : 1;
+  }
+  return outside;
+}
+
+KickPowers closing_kick(Simulation& sim, double dt_half) {
+  for (std::size_t k = 0; k < sim.motions.size(); ++k) {
+    if (sim.motions[k].torque_driven) spin(sim, k, dt_half);
   }
   Particles& p = sim.particles;
   const std::size_t n = p.n;
@@ -61,95 +151,17 @@ KickPowers kick(Simulation& sim, double dt_half, bool before_drift) {
 #pragma omp parallel for num_threads(sim.threads) schedule(static) reduction(+ : drive, load)
   for (std::size_t i = 0; i < n; ++i) {
     const Motion& m = motions[p.motion[i]];
-    switch (m.kind) {
-      case Motion::Kind::Free:
-        p.vx[i] += dt_half * (p.ax[i] + p.ext_ax[i]);
-        p.vy[i] += dt_half * (p.ay[i] + p.ext_ay[i]);
-        break;
-      case Motion::Kind::GuidedX:
-        p.vx[i] += dt_half * (p.ax[i] + p.ext_ax[i]);
-        p.vy[i] = 0.0;
-        break;
-      case Motion::Kind::Fixed:
-        p.vx[i] = p.vy[i] = 0.0;
-        break;
-      case Motion::Kind::Velocity:
-        p.vx[i] = m.vx;
-        p.vy[i] = m.vy;
-        break;
-      case Motion::Kind::Rotation:
-        if (before_drift) {
-          // The chord velocity (x^{n+1} - x^n)/dt of the exact rotation: its
-          // gradient, mapped to mid-step, is a pure spin (no dilatation).
-          const double c = m.cos_next, s = m.sin_next;
-          const double rx = p.x0[i] - m.cx, ry = p.y0[i] - m.cy;
-          p.vx[i] = (m.cx + c * rx - s * ry - p.x[i]) / (2.0 * dt_half);
-          p.vy[i] = (m.cy + s * rx + c * ry - p.y[i]) / (2.0 * dt_half);
-        } else {
-          p.vx[i] = -m.omega * (p.y[i] - m.cy);
-          p.vy[i] = m.omega * (p.x[i] - m.cx);
-        }
-        break;
-    }
-    if (!before_drift) {
-      drive += drive_power(p, m, i);
-      load += ramp * p.mass[i] * (p.load_ax[i] * p.vx[i] + p.load_ay[i] * p.vy[i]);
-    }
+    kick_particle(p, m, i, dt_half, false);
+    drive += drive_power(p, m, i);
+    load += ramp * p.mass[i] * (p.load_ax[i] * p.vx[i] + p.load_ay[i] * p.vy[i]);
   }
   // A torque-driven group is also accelerated along its rotation: the drive
   // supplies that too (in all, the applied torque's power less what goes
   // into the attached inertia, which is not among the particles' energy).
-  if (!before_drift) {
-    for (const Motion& m : sim.motions) {
-      if (m.torque_driven) drive += m.group_inertia * m.alpha * m.omega;
-    }
+  for (const Motion& m : sim.motions) {
+    if (m.torque_driven) drive += m.group_inertia * m.alpha * m.omega;
   }
   return {drive, load};
-}
-
-std::size_t drift(Simulation& sim, double dt) {
-  Particles& p = sim.particles;
-  const std::size_t n = p.n;
-  const double t = sim.time + dt;
-  for (Motion& m : sim.motions) {
-    if (m.kind != Motion::Kind::Rotation) continue;
-    // Held: placed exactly at omega t, no drift over a million steps.
-    m.angle = m.torque_driven ? m.angle + dt * m.omega : m.omega * t;
-    m.cos_next = std::cos(m.angle);  // once per group, not per particle
-    m.sin_next = std::sin(m.angle);
-  }
-  const Motion* motions = sim.motions.data();
-  const Box box = sim.domain;
-  std::size_t outside = 0;
-#pragma omp parallel for num_threads(sim.threads) schedule(static) reduction(+ : outside)
-  for (std::size_t i = 0; i < n; ++i) {
-    const Motion& m = motions[p.motion[i]];
-    switch (m.kind) {
-      case Motion::Kind::Free:
-      case Motion::Kind::GuidedX:
-        p.x[i] += dt * p.vx[i];
-        p.y[i] += dt * p.vy[i];
-        break;
-      case Motion::Kind::Fixed:
-        p.x[i] = p.x0[i];
-        p.y[i] = p.y0[i];
-        break;
-      case Motion::Kind::Velocity:
-        p.x[i] = p.x0[i] + m.vx * t;
-        p.y[i] = p.y0[i] + m.vy * t;
-        break;
-      case Motion::Kind::Rotation: {
-        const double c = m.cos_next, s = m.sin_next;
-        const double rx = p.x0[i] - m.cx, ry = p.y0[i] - m.cy;
-        p.x[i] = m.cx + c * rx - s * ry;
-        p.y[i] = m.cy + s * rx + c * ry;
-        break;
-      }
-    }
-    // NaN fails both comparisons, so a non-finite position counts as outside.
-    outside += box.contains(p.x[i], p.y[i]) ? 0 : 1;
-  }
-  return outside;
 }
 
 double load_ramp(const Simulation& sim) {

@@ -14,15 +14,16 @@ struct KickPowers {
   double load = 0.0;
 };
 
-// v += dt_half a for integrated components; prescribed velocities elsewhere.
-// Before the drift, a driven rotation gets the chord velocity of its exact
-// placement over the step; after it, the velocity at the new position, and
-// the powers at v^{n+1} are summed in the same pass (zero before the drift).
-KickPowers kick(Simulation& sim, double dt_half, bool before_drift);
-// x += dt v for integrated particles; driven particles are placed exactly at
+// The opening half of a kick-drift-kick step, in one pass over the
+// particles: v^{n+1/2} = v^n + dt/2 a^n for integrated components (a driven
+// rotation gets the chord velocity of its exact placement over the step),
+// then x^{n+1} = x^n + dt v^{n+1/2}; driven particles are placed exactly at
 // time sim.time + dt (no drift of a rotating hub over a million steps).
 // Returns the number of particles outside the domain afterwards.
-std::size_t drift(Simulation& sim, double dt);
+std::size_t kick_drift(Simulation& sim, double dt);
+// v^{n+1} = v^{n+1/2} + dt_half a^{n+1}; prescribed velocities at the new
+// positions. The powers at v^{n+1} are summed in the same pass.
+KickPowers closing_kick(Simulation& sim, double dt_half);
 // Fraction of the applied loads acting at sim.time (linear ramp).
 double load_ramp(const Simulation& sim);
 }  // namespace integrate

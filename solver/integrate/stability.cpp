@@ -65,6 +65,7 @@ StabilityLimit estimate_stability_limit(const Simulation& original) {
   // configuration its linearisation is the updated-Lagrangian one too.
   Simulation sim = original;
   sim.method.formulation = Formulation::TotalLagrangian;
+  sim.particles.release_updated_lagrangian();  // before the pairs: a lower peak of memory
   sim.method.viscosity.alpha = sim.method.viscosity.beta = 0.0;
   if (original.method.formulation != Formulation::TotalLagrangian) {
     sim.method.hourglass.coefficient = 0.0;  // a damping in UL, not a stiffness
@@ -108,21 +109,23 @@ StabilityLimit estimate_stability_limit(const Simulation& original) {
     out.damping_rate =
         largest_eigenvalue(sim, [&](const std::vector<double>& vx, const std::vector<double>& vy,
                                     std::vector<double>& ax, std::vector<double>& ay) {
-          for (std::size_t i = 0; i < n; ++i) {
-            double sx = 0, sy = 0;
+          std::fill(ax.begin(), ax.end(), 0.0);
+          std::fill(ay.begin(), ay.end(), 0.0);
+          for (std::size_t i = 0; i < n; ++i) {  // each pair once, to both ends
             for (std::uint32_t k = rp.rows[i]; k < rp.rows[i + 1]; ++k) {
               const std::uint32_t j = rp.j[k];
               const double dx = p.x0[i] - p.x0[j], dy = p.y0[i] - p.y0[j];
               const double r2 = dx * dx + dy * dy, r = std::sqrt(r2);
               const double vr = (vx[i] - vx[j]) * dx + (vy[i] - vy[j]) * dy;
-              const double coef = p.mass[j] * av.alpha * 0.5 * (p.cs[i] + p.cs[j]) * h /
+              const double coef = av.alpha * 0.5 * (p.cs[i] + p.cs[j]) * h /
                                   ((r2 + eta2) * 0.5 * (p.rho0[i] + p.rho0[j]));
               const double g = rp.dw0[k] / r;  // grad_i W_ij = g (dx, dy)
-              sx += coef * vr * g * dx;
-              sy += coef * vr * g * dy;
+              const double sx = coef * vr * g * dx, sy = coef * vr * g * dy;
+              ax[i] -= p.mass[j] * sx;  // a = -D v with D positive semi-definite
+              ay[i] -= p.mass[j] * sy;
+              ax[j] += p.mass[i] * sx;
+              ay[j] += p.mass[i] * sy;
             }
-            ax[i] = -sx;  // a = -D v with D positive semi-definite
-            ay[i] = -sy;
           }
         });
   }

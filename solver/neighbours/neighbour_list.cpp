@@ -35,7 +35,7 @@ void NeighbourList::build(const Particles& p, double cutoff, PairSelection selec
     const double xi = px[i], yi = py[i];
     const int bi = p.body[i];
     grid_.for_each_near(xi, yi, [&](std::uint32_t k) {
-      if (k == i || !selected(selection, bi, p.body[k])) return;
+      if (k == i || (reference && k < i) || !selected(selection, bi, p.body[k])) return;
       const double dx = xi - px[k], dy = yi - py[k];
       if (dx * dx + dy * dy < c2) emit(k);
     });
@@ -59,7 +59,7 @@ void NeighbourList::build(const Particles& p, double cutoff, PairSelection selec
     // Sorted rows: deterministic order and forward memory access.
     std::sort(j.begin() + rows[i], j.begin() + rows[i + 1]);
   }
-  dw_r.assign(j.size(), 0.0);
+  dw_r.assign(reference ? 0 : j.size(), 0.0);
   if (!w.empty()) w.assign(j.size(), 0.0);
   x_built_.assign(p.x.begin(), p.x.end());
   y_built_.assign(p.y.begin(), p.y.end());

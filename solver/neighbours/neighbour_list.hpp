@@ -31,12 +31,14 @@ class NeighbourList {
   // rows[i] .. rows[i+1] index the entries of particle i.
   std::vector<std::uint32_t> rows;
   std::vector<std::uint32_t> j;
-  // Cached per entry, refreshed each step by the velocity-gradient loop.
+  // Cached per entry, refreshed each step by the velocity-gradient loop
+  // (current-configuration lists only).
   std::vector<double> dw_r;  // W'(r_ij) / r_ij
   std::vector<double> w;     // W_ij, sized only when a term needs it
 
-  // Builds from the current positions (or reference positions when
-  // `reference` is set, for total-Lagrangian lists that never change).
+  // Builds from the current positions, or from the reference positions when
+  // `reference` is set: total-Lagrangian lists, which never change, hold each
+  // unordered pair once (row i only j > i) and no W' cache.
   void build(const Particles& p, double cutoff, PairSelection selection, bool reference,
              int threads);
   bool needs_rebuild(const Particles& p) const;

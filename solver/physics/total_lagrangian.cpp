@@ -8,185 +8,144 @@
 
 #include "solver/core/simulation.hpp"
 #include "solver/physics/artificial_viscosity.hpp"
-#include "solver/physics/kernel_correction.hpp"
 
 namespace gearsph::physics {
 
-void total_lagrangian_setup(Simulation& sim) {
-  Particles& p = sim.particles;
+namespace {
+
+// Values a pair writes to each end: F loop 4 (the sum M of F = I + M),
+// momentum loop 6 (stress share, viscosity, hourglass).
+constexpr int kSpillComponents = 6;
+
+RowChunks& planned_chunks(Simulation& sim) {
   ReferencePairs& rp = sim.reference;
-  NeighbourList list;
-  const PairSelection sel = PairSelection::SameBody;
-  with_kernel(sim.discretization.kernel, sim.h(), [&](const auto& kernel) {
-    list.build(p, kernel.radius, sel, /*reference=*/true, sim.threads);
-    const std::size_t n = p.n, m = list.entries();
-    rp.rows = list.rows;
-    rp.j = list.j;
-    rp.gix.assign(m, 0.0);
-    rp.giy.assign(m, 0.0);
-    rp.gjx.assign(m, 0.0);
-    rp.gjy.assign(m, 0.0);
-    // W itself is needed only by hourglass control: without it an entry
-    // takes 8 bytes less (docs/speed-accuracy.md, memory per particle).
-    const bool keep_w = sim.method.hourglass.enabled();
-    rp.w0.assign(keep_w ? m : 0, 0.0);
-    rp.dw0.assign(m, 0.0);
-    for (auto* v : {&rp.px, &rp.py, &rp.pyx, &rp.pyy, &rp.ux, &rp.uy}) v->assign(n, 0.0);
-    rp.vol0.resize(n);
-    for (std::size_t i = 0; i < n; ++i) rp.vol0[i] = p.mass[i] / p.rho0[i];
-    // Gradient correction of every particle from its reference neighbourhood.
-    const GradientCorrection requested = sim.method.correction;
-    const bool quadratic = requested == GradientCorrection::Quadratic;
-    std::vector<Correction> corr(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      Moments mom;
-      for (std::uint32_t k = rp.rows[i]; k < rp.rows[i + 1]; ++k) {
-        const std::uint32_t j = rp.j[k];
-        const double dx = p.x0[i] - p.x0[j], dy = p.y0[i] - p.y0[j];
-        const double r = std::sqrt(dx * dx + dy * dy);
-        if (keep_w) rp.w0[k] = kernel.W(r);
-        rp.dw0[k] = kernel.dW(r);
-        mom.add(-(p.mass[j] / p.rho0[j]) * rp.dw0[k] / r, dx, dy, quadratic);
-      }
-      if (requested != GradientCorrection::None) {
-        corr[i] = correction_from_moments(mom, requested, sim.h());
-      }
-      p.bxx[i] = corr[i].lxx;
-      p.bxy[i] = corr[i].lxy;
-      p.byx[i] = corr[i].lyx;
-      p.byy[i] = corr[i].lyy;
-      p.correction_order[i] = static_cast<std::uint8_t>(corr[i].order);
-    }
-    // Per entry: G_ij = -w C_i phi(d) and -G_ji = w C_j phi(-d), d = X_i - X_j.
-    auto weight = [](const Correction& c, double mw, double dx, double dy, double& gx, double& gy) {
-      const double q0 = dx * dx, q1 = dx * dy, q2 = dy * dy;
-      gx = mw * (c.lxx * dx + c.lxy * dy + c.qx[0] * q0 + c.qx[1] * q1 + c.qx[2] * q2);
-      gy = mw * (c.lyx * dx + c.lyy * dy + c.qy[0] * q0 + c.qy[1] * q1 + c.qy[2] * q2);
-    };
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::uint32_t k = rp.rows[i]; k < rp.rows[i + 1]; ++k) {
-        const std::uint32_t j = rp.j[k];
-        const double dx = p.x0[i] - p.x0[j], dy = p.y0[i] - p.y0[j];
-        const double r = std::sqrt(dx * dx + dy * dy);
-        const double dw_r = rp.dw0[k] / r;  // = -w
-        const double vol_j = rp.vol0[j];
-        double gx = 0, gy = 0;
-        weight(corr[i], dw_r, dx, dy, gx, gy);
-        rp.gix[k] = vol_j * gx;
-        rp.giy[k] = vol_j * gy;
-        weight(corr[j], dw_r, -dx, -dy, gx, gy);  // G_ji
-        rp.gjx[k] = -vol_j * gx;
-        rp.gjy[k] = -vol_j * gy;
-      }
-    }
-    rp.upper.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const auto first = rp.j.begin() + rp.rows[i], last = rp.j.begin() + rp.rows[i + 1];
-      rp.upper[i] = static_cast<std::uint32_t>(
-          std::upper_bound(first, last, static_cast<std::uint32_t>(i)) - rp.j.begin());
-    }
-    rp.sgx.assign(n, 0.0);
-    rp.sgy.assign(n, 0.0);
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::uint32_t k = rp.rows[i]; k < rp.rows[i + 1]; ++k) {
-        rp.sgx[i] += rp.gix[k];
-        rp.sgy[i] += rp.giy[k];
-      }
-    }
-  });
-  rp.lambda_body.clear();
-  rp.mu_body.clear();
-  for (const Body& b : sim.bodies) {
-    rp.lambda_body.push_back(b.material.lame_lambda());
-    rp.mu_body.push_back(b.material.shear_modulus());
+  const int threads = std::max(1, sim.threads);
+  if (!rp.chunks.planned_for(threads, kSpillComponents)) {
+    rp.chunks.plan(rp.rows, rp.j, threads, kSpillComponents);  // once per run
+  }
+  return rp.chunks;
+}
+
+// F loop, pass 0 for chunk c: displacements u = x - X, so that the pair
+// loop gathers two values per neighbour instead of four.
+void displacements(Simulation& sim, const RowChunks& chunks, int c) {
+  const Particles& p = sim.particles;
+  ReferencePairs& rp = sim.reference;
+  for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
+    rp.ux[i] = p.x[i] - p.x0[i];
+    rp.uy[i] = p.y[i] - p.y0[i];
   }
 }
 
-void total_lagrangian_stress(Simulation& sim) {
-  Particles& p = sim.particles;
-  ReferencePairs& rp = sim.reference;
-  const std::size_t n = p.n;
+// F loop, pass 1 for chunk c, each pair once: M_i += V0_j (u_j - u_i) (x) G_ij
+// and M_j += V0_i (u_i - u_j) (x) G_ji, with displacements u = x - X so that
+// round-off does not swamp strains of 1e-6 on positions of 1e-1 m (the small
+// terms are summed first, then added to I).
+void deformation_sums(Simulation& sim, RowChunks& chunks, int c) {
+  const ReferencePairs& rp = sim.reference;
   const std::uint32_t* rows = rp.rows.data();
   const std::uint32_t* jj = rp.j.data();
-  const double* gix = rp.gix.data();
-  const double* giy = rp.giy.data();
-  const double* lambda_body = rp.lambda_body.data();
-  const double* mu_body = rp.mu_body.data();
-  double* ux = rp.ux.data();
-  double* uy = rp.uy.data();
-  // Contact candidates (penalty contact only), refreshed before this step's forces.
-  const std::uint32_t* contact_rows =
-      sim.contacts.rows.size() == n + 1 ? sim.contacts.rows.data() : nullptr;
-  // One parallel region, two work-shared loops: the displacements first, so
-  // that the pair loop reads one array per component instead of two.
-#pragma omp parallel num_threads(sim.threads)
-  {
-#pragma omp for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      ux[i] = p.x[i] - p.x0[i];
-      uy[i] = p.y[i] - p.y0[i];
-    }
-#pragma omp for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      // F = I + sum_j V0_j (u_j - u_i) (x) g_ij: written with displacements so
-      // that round-off does not swamp strains of 1e-6 on positions of 1e-1 m
-      // (the sum of the small terms is formed first, then added to I).
-      const double uxi = ux[i], uyi = uy[i];
-      double sxx_ = 0, sxy_ = 0, syx_ = 0, syy_ = 0;
-      for (std::uint32_t k = rows[i]; k < rows[i + 1]; ++k) {
+  const double *gix = rp.gix.data(), *giy = rp.giy.data();
+  const double *gjx = rp.gjx.data(), *gjy = rp.gjy.data();
+  const double* vol0 = rp.vol0.data();
+  const double *ux = rp.ux.data(), *uy = rp.uy.data();
+  // M = F - I is summed in F's own arrays.
+  Particles& out = sim.particles;
+  double* const m_sum[4] = {out.fxx.data(), out.fxy.data(), out.fyx.data(), out.fyy.data()};
+  const std::size_t lo = chunks.begin(c), hi = chunks.end(c);
+  for (double* m : m_sum) std::fill(m + lo, m + hi, 0.0);
+  double* const spill[4] = {chunks.spill(c, 0), chunks.spill(c, 1), chunks.spill(c, 2),
+                            chunks.spill(c, 3)};
+  for (std::size_t i = lo; i < hi; ++i) {
+    const double uxi = ux[i], uyi = uy[i], vi = vol0[i];
+    // Row i continues the sums its pairs with j < i began.
+    double mxx = m_sum[0][i], mxy = m_sum[1][i], myx = m_sum[2][i], myy = m_sum[3][i];
+    auto pairs = [&](std::uint32_t k0, std::uint32_t k1, double* const* to, std::size_t base) {
+      double* __restrict t0 = to[0];
+      double* __restrict t1 = to[1];
+      double* __restrict t2 = to[2];
+      double* __restrict t3 = to[3];
+      for (std::uint32_t k = k0; k < k1; ++k) {
         const std::uint32_t j = jj[k];
         const double dux = ux[j] - uxi, duy = uy[j] - uyi;
-        sxx_ += dux * gix[k];
-        sxy_ += dux * giy[k];
-        syx_ += duy * gix[k];
-        syy_ += duy * giy[k];
+        const double vj = vol0[j];
+        const double ax = vj * gix[k], ay = vj * giy[k];
+        mxx += dux * ax;
+        mxy += dux * ay;
+        myx += duy * ax;
+        myy += duy * ay;
+        const double bx = vi * gjx[k], by = vi * gjy[k];
+        const std::size_t t = j - base;
+        t0[t] += -dux * bx;
+        t1[t] += -dux * by;
+        t2[t] += -duy * bx;
+        t3[t] += -duy * by;
       }
-      const double fxx = 1.0 + sxx_, fxy = sxy_, fyx = syx_, fyy = 1.0 + syy_;
-      p.fxx[i] = fxx;
-      p.fxy[i] = fxy;
-      p.fyx[i] = fyx;
-      p.fyy[i] = fyy;
-      // Rotation of the polar decomposition F = R U (2D: one angle); only the
-      // contact normals of surface particles with contact candidates use it.
-      if (contact_rows && contact_rows[i] != contact_rows[i + 1] &&
-          std::isfinite(p.surf_depth[i])) {
-        p.rot[i] = std::atan2(fyx - fxy, fxx + fyy);
-      }
-
-      // Saint Venant-Kirchhoff, plane strain (E_zz = 0).
-      const int b = p.body[i];
-      const double lam = lambda_body[b], mu = mu_body[b];
-      const double exx = 0.5 * (fxx * fxx + fyx * fyx - 1.0);
-      const double eyy = 0.5 * (fxy * fxy + fyy * fyy - 1.0);
-      const double exy = 0.5 * (fxx * fxy + fyx * fyy);
-      const double tr = exx + eyy;
-      const double sxx = lam * tr + 2 * mu * exx, syy = lam * tr + 2 * mu * eyy, sxy = 2 * mu * exy;
-      const double szz = lam * tr;
-      // P = F S
-      const double pxx = fxx * sxx + fxy * sxy, pxy = fxx * sxy + fxy * syy;
-      const double pyx = fyx * sxx + fyy * sxy, pyy = fyx * sxy + fyy * syy;
-      rp.px[i] = pxx;
-      rp.py[i] = pxy;
-      rp.pyx[i] = pyx;
-      rp.pyy[i] = pyy;
-      // Cauchy sigma = F S F^T / J (sigma_zz = S_zz / J) for output.
-      const double inv_jac = 1.0 / (fxx * fyy - fxy * fyx);
-      const double cxx = (pxx * fxx + pxy * fxy) * inv_jac;
-      const double cyy = (pyx * fyx + pyy * fyy) * inv_jac;
-      const double cxy = (pxx * fyx + pxy * fyy) * inv_jac;
-      const double czz = szz * inv_jac;
-      const double mean = (cxx + cyy + czz) / 3.0;
-      p.p[i] = -mean;
-      p.sxx[i] = cxx - mean;
-      p.syy[i] = cyy - mean;
-      p.szz[i] = czz - mean;
-      p.sxy[i] = cxy;
-      p.rho[i] = p.rho0[i] * inv_jac;
-    }
+    };
+    pairs(rows[i], chunks.cross(i), m_sum, 0);       // j in this chunk
+    pairs(chunks.cross(i), rows[i + 1], spill, hi);  // j past it
+    m_sum[0][i] = mxx;
+    m_sum[1][i] = mxy;
+    m_sum[2][i] = myx;
+    m_sum[3][i] = myy;
   }
 }
 
-namespace {
+// F loop, pass 2 for chunk c, per particle: F, then P and the Cauchy stress.
+void stress_from_deformation(Simulation& sim, RowChunks& chunks, int c) {
+  Particles& p = sim.particles;
+  ReferencePairs& rp = sim.reference;
+  const double* lambda_body = rp.lambda_body.data();
+  const double* mu_body = rp.mu_body.data();
+  double* const m_sum[4] = {p.fxx.data(), p.fxy.data(), p.fyx.data(), p.fyy.data()};
+  // Contact candidates (penalty contact only), refreshed before this step's forces.
+  const std::uint32_t* contact_rows =
+      sim.contacts.rows.size() == p.n + 1 ? sim.contacts.rows.data() : nullptr;
+  chunks.add_spills(c, m_sum, 4);
+  for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
+    const double fxx = 1.0 + m_sum[0][i], fxy = m_sum[1][i];
+    const double fyx = m_sum[2][i], fyy = 1.0 + m_sum[3][i];
+    p.fxx[i] = fxx;
+    p.fxy[i] = fxy;
+    p.fyx[i] = fyx;
+    p.fyy[i] = fyy;
+    // Rotation of the polar decomposition F = R U (2D: one angle); only the
+    // contact normals of surface particles with contact candidates use it.
+    if (contact_rows && contact_rows[i] != contact_rows[i + 1] && std::isfinite(p.surf_depth[i])) {
+      p.rot[i] = std::atan2(fyx - fxy, fxx + fyy);
+    }
+
+    // Saint Venant-Kirchhoff, plane strain (E_zz = 0).
+    const int b = p.body[i];
+    const double lam = lambda_body[b], mu = mu_body[b];
+    const double exx = 0.5 * (fxx * fxx + fyx * fyx - 1.0);
+    const double eyy = 0.5 * (fxy * fxy + fyy * fyy - 1.0);
+    const double exy = 0.5 * (fxx * fxy + fyx * fyy);
+    const double tr = exx + eyy;
+    const double sxx = lam * tr + 2 * mu * exx, syy = lam * tr + 2 * mu * eyy, sxy = 2 * mu * exy;
+    const double szz = lam * tr;
+    // P = F S
+    const double pxx = fxx * sxx + fxy * sxy, pxy = fxx * sxy + fxy * syy;
+    const double pyx = fyx * sxx + fyy * sxy, pyy = fyx * sxy + fyy * syy;
+    rp.px[i] = pxx;
+    rp.py[i] = pxy;
+    rp.pyx[i] = pyx;
+    rp.pyy[i] = pyy;
+    // Cauchy sigma = F S F^T / J (sigma_zz = S_zz / J) for output.
+    const double inv_jac = 1.0 / (fxx * fyy - fxy * fyx);
+    const double cxx = (pxx * fxx + pxy * fxy) * inv_jac;
+    const double cyy = (pyx * fyx + pyy * fyy) * inv_jac;
+    const double cxy = (pxx * fyx + pxy * fyy) * inv_jac;
+    const double czz = szz * inv_jac;
+    const double mean = (cxx + cyy + czz) / 3.0;
+    p.p[i] = -mean;
+    p.sxx[i] = cxx - mean;
+    p.syy[i] = cyy - mean;
+    p.szz[i] = czz - mean;
+    p.sxy[i] = cxy;
+    p.rho[i] = p.rho0[i] * inv_jac;
+  }
+}
 
 // Monaghan's viscosity of one pair (artificial_viscosity.hpp) over one
 // denominator, without the neighbour's mass: Pi_ij dW/dr / r with
@@ -202,17 +161,18 @@ inline double viscosity_pair(double dw0, double h, double vr, double r2, double 
 
 // The pair loop of the momentum equation, one instantiation with and one
 // without hourglass control: raw pointers and no branches (the viscosity's
-// switch is a select). The stress share is gathered row by row (each row
-// writes only its own particle); the viscosity, which needs a square root
-// and a division per pair, is evaluated once per unordered pair and added
-// to both ends through per-thread sums (equal and opposite: momentum is
-// conserved exactly). The row sums are left scalar on purpose: rows hold
-// ~28 entries and every entry gathers a dozen neighbour values, so
-// `omp simd` reductions cost more in gathers, masks and reduction set-up
-// than they save (measured: 17 % slower here, 2.2x slower in the F loop;
-// docs/speed-accuracy.md).
+// switch is a select). Each pair once, written to both ends (RowChunks):
+//   stress share  a_i += -V0_j P_j G_ji / rho0_i,  a_j += -V0_i P_i G_ij / rho0_j
+//   viscosity     a_i -= m_j Pi_ij g_ij,           a_j += m_i Pi_ij g_ij
+// (equal and opposite: momentum is conserved exactly). The own share
+// P_i sum_j V0_j G_ij needs no pair work (sgx, sgy). The row sums are left
+// scalar on purpose: `omp simd` reductions over gathered neighbours cost more
+// in gathers, masks and set-up than they save (measured: 17 % slower here,
+// 2.2x slower in the F loop; docs/speed-accuracy.md).
+// Momentum loop, pass 1 for chunk c; returns the energy the viscosity and
+// hourglass control removed per unit time.
 template <bool kHourglass>
-void momentum_loop(Simulation& sim, double dt) {
+double momentum_sums(Simulation& sim, RowChunks& chunks, int c) {
   Particles& p = sim.particles;
   ReferencePairs& rp = sim.reference;
   const ArtificialViscosity& av = sim.method.viscosity;
@@ -220,68 +180,54 @@ void momentum_loop(Simulation& sim, double dt) {
   const double hg = sim.method.hourglass.coefficient;
   const double alpha = av.alpha, beta = av.beta;
   const double eta2 = (av.eta_over_h * h) * (av.eta_over_h * h);
-  const std::size_t n = p.n;
-  const int threads = std::max(1, sim.threads);
-  if (rp.pair_acc.size() != 2 * n * static_cast<std::size_t>(threads)) {
-    rp.pair_acc.assign(2 * n * static_cast<std::size_t>(threads), 0.0);
-  }
-  double* pair_acc = rp.pair_acc.data();
   const std::uint32_t* rows = rp.rows.data();
-  const std::uint32_t* upper = rp.upper.data();
   const std::uint32_t* jj = rp.j.data();
+  const double *gix = rp.gix.data(), *giy = rp.giy.data();
   const double *gjx = rp.gjx.data(), *gjy = rp.gjy.data();
   const double *dw0 = rp.dw0.data(), *w0 = rp.w0.data();
   const double *Pxx = rp.px.data(), *Pxy = rp.py.data();
   const double *Pyx = rp.pyx.data(), *Pyy = rp.pyy.data();
-  const double *sgx = rp.sgx.data(), *sgy = rp.sgy.data();
   const double* vol0 = rp.vol0.data();
   const double *x = p.x.data(), *y = p.y.data(), *vx = p.vx.data(), *vy = p.vy.data();
   const double *x0 = p.x0.data(), *y0 = p.y0.data();
   const double *cs = p.cs.data(), *rho = p.rho.data(), *mass = p.mass.data();
+  const double* rho0 = p.rho0.data();
   const double *Fxx = p.fxx.data(), *Fxy = p.fxy.data(), *Fyx = p.fyx.data(), *Fyy = p.fyy.data();
+  // Sums per particle: stress share (in a itself), viscosity, hourglass.
+  double* const sum[6] = {p.ax.data(),       p.ay.data(),     rp.visc_ax.data(),
+                          rp.visc_ay.data(), rp.hg_ax.data(), rp.hg_ay.data()};
+  constexpr int kSums = kHourglass ? 6 : 4;
   double dissipated = 0.0;
-#pragma omp parallel num_threads(threads) reduction(+ : dissipated)
-  {
-    // The team may be smaller than asked for: only its buffers are summed.
-    const int team = omp_get_num_threads();
-    double* acc_x = pair_acc + 2 * n * static_cast<std::size_t>(omp_get_thread_num());
-    double* acc_y = acc_x + n;
-    std::fill(acc_x, acc_x + 2 * n, 0.0);
-#pragma omp for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      const double inv_rho0 = 1.0 / p.rho0[i];
-      const double e_mod = kHourglass ? sim.material_of(i).E : 0.0;
-      const double xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
-      const double csi = cs[i], rhoi = rho[i], mi = mass[i];
-      // (P_i B_i + P_j B_j) grad0_i W_ij V0_j: the P_i share is P_i times the
-      // row's gradient sum (setup), only the P_j share is summed over pairs.
-      double sx = 0, sy = 0, ax = 0, ay = 0;
-      for (std::uint32_t k = rows[i]; k < rows[i + 1]; ++k) {
+  const std::size_t lo = chunks.begin(c), hi = chunks.end(c);
+  for (int q = 0; q < kSums; ++q) std::fill(sum[q] + lo, sum[q] + hi, 0.0);
+  double* spill[6] = {};
+  for (int q = 0; q < kSums; ++q) spill[q] = chunks.spill(c, q);
+  for (std::size_t i = lo; i < hi; ++i) {
+    const double inv_rho0 = 1.0 / rho0[i];
+    const double e_mod = kHourglass ? sim.material_of(i).E : 0.0;
+    const double xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
+    const double csi = cs[i], rhoi = rho[i], mi = mass[i], vi = vol0[i];
+    const double pxx = Pxx[i], pxy = Pxy[i], pyx = Pyx[i], pyy = Pyy[i];
+    // Row i continues the sums its pairs with j < i began.
+    double sx = sum[0][i], sy = sum[1][i], vsx = sum[2][i], vsy = sum[3][i];
+    double hsx = kHourglass ? sum[4][i] : 0.0, hsy = kHourglass ? sum[5][i] : 0.0;
+    auto pairs = [&](std::uint32_t k0, std::uint32_t k1, double* const* to, std::size_t base) {
+      double* __restrict t0 = to[0];
+      double* __restrict t1 = to[1];
+      double* __restrict t2 = to[2];
+      double* __restrict t3 = to[3];
+      double* __restrict t4 = to[4];
+      double* __restrict t5 = to[5];
+      for (std::uint32_t k = k0; k < k1; ++k) {
         const std::uint32_t j = jj[k];
-        sx += Pxx[j] * gjx[k] + Pxy[j] * gjy[k];
-        sy += Pyx[j] * gjx[k] + Pyy[j] * gjy[k];
-        if constexpr (kHourglass) {
-          // Ganzenmueller 2015: penalise x_ij - F_mean X_ij along the pair.
-          const double dx = xi - x[j], dy = yi - y[j];
-          const double dvx = vxi - vx[j], dvy = vyi - vy[j];
-          const double r2 = dx * dx + dy * dy;
-          const double vol_j = vol0[j];
-          const double X = x0[i] - x0[j], Y = y0[i] - y0[j];
-          const double fxx = 0.5 * (Fxx[i] + Fxx[j]), fxy = 0.5 * (Fxy[i] + Fxy[j]);
-          const double fyx = 0.5 * (Fyx[i] + Fyx[j]), fyy = 0.5 * (Fyy[i] + Fyy[j]);
-          const double ex = dx - (fxx * X + fxy * Y), ey = dy - (fyx * X + fyy * Y);
-          const double inv_r = 1.0 / std::sqrt(r2);
-          const double stretch = (ex * dx + ey * dy) * inv_r;
-          const double R2 = X * X + Y * Y;
-          const double f = -0.5 * hg * e_mod * vol_j * inv_rho0 * w0[k] * stretch / R2 * inv_r;
-          ax += f * dx;
-          ay += f * dy;
-          dissipated -= 0.5 * mi * f * (dvx * dx + dvy * dy);
-        }
-      }
-      // Viscosity: each unordered pair once, from its lower index.
-      for (std::uint32_t k = upper[i]; k < rows[i + 1]; ++k) {
-        const std::uint32_t j = jj[k];
+        const std::size_t t = j - base;
+        const double vj = vol0[j];
+        const double bx = -vj * gjx[k], by = -vj * gjy[k];  // -V0_j G_ji
+        sx += Pxx[j] * bx + Pxy[j] * by;
+        sy += Pyx[j] * bx + Pyy[j] * by;
+        const double ax = -vi * gix[k], ay = -vi * giy[k];  // -V0_i G_ij
+        t0[t] += pxx * ax + pxy * ay;
+        t1[t] += pyx * ax + pyy * ay;
         const double dx = xi - x[j], dy = yi - y[j];
         const double dvx = vxi - vx[j], dvy = vyi - vy[j];
         const double r2 = dx * dx + dy * dy;
@@ -289,41 +235,146 @@ void momentum_loop(Simulation& sim, double dt) {
         const double pg = viscosity_pair(dw0[k], h, vr, r2, r2 + eta2, alpha, beta,
                                          0.5 * (csi + cs[j]), 0.5 * (rhoi + rho[j]));
         const double mj = mass[j];
-        acc_x[i] -= mj * pg * dx;
-        acc_y[i] -= mj * pg * dy;
-        acc_x[j] += mi * pg * dx;
-        acc_y[j] += mi * pg * dy;
+        vsx -= mj * pg * dx;
+        vsy -= mj * pg * dy;
+        t2[t] += mi * pg * dx;
+        t3[t] += mi * pg * dy;
         dissipated += mi * mj * pg * vr;  // >= 0: energy removed
+        if constexpr (kHourglass) {
+          // Ganzenmueller 2015: penalise x_ij - F_mean X_ij along the pair.
+          const double X = x0[i] - x0[j], Y = y0[i] - y0[j];
+          const double fxx = 0.5 * (Fxx[i] + Fxx[j]), fxy = 0.5 * (Fxy[i] + Fxy[j]);
+          const double fyx = 0.5 * (Fyx[i] + Fyx[j]), fyy = 0.5 * (Fyy[i] + Fyy[j]);
+          const double ex = dx - (fxx * X + fxy * Y), ey = dy - (fyx * X + fyy * Y);
+          const double inv_r = 1.0 / std::sqrt(r2);
+          const double stretch = (ex * dx + ey * dy) * inv_r;
+          const double R2 = X * X + Y * Y;
+          const double e_j = sim.material_of(j).E;
+          const double fi = -0.5 * hg * e_mod * vj * inv_rho0 * w0[k] * stretch / R2 * inv_r;
+          const double fj = -0.5 * hg * e_j * vi * (1.0 / rho0[j]) * w0[k] * stretch / R2 * inv_r;
+          hsx += fi * dx;
+          hsy += fi * dy;
+          t4[t] += fj * -dx;
+          t5[t] += fj * -dy;
+          dissipated -= 0.5 * (mi * fi + mj * fj) * (dvx * dx + dvy * dy);
+        }
       }
-      const double pxx = Pxx[i], pxy = Pxy[i], pyx = Pyx[i], pyy = Pyy[i];
-      p.ax[i] = ax + inv_rho0 * (pxx * sgx[i] + pxy * sgy[i] + sx);
-      p.ay[i] = ay + inv_rho0 * (pyx * sgx[i] + pyy * sgy[i] + sy);
+    };
+    pairs(rows[i], chunks.cross(i), sum, 0);         // j in this chunk
+    pairs(chunks.cross(i), rows[i + 1], spill, hi);  // j past it
+    sum[0][i] = sx;
+    sum[1][i] = sy;
+    sum[2][i] = vsx;
+    sum[3][i] = vsy;
+    if constexpr (kHourglass) {
+      sum[4][i] = hsx;
+      sum[5][i] = hsy;
     }
-    // (implicit barrier: every thread's pair sums are complete)
-#pragma omp for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      double ax = 0, ay = 0;
-      for (int t = 0; t < team; ++t) {
-        ax += pair_acc[2 * n * static_cast<std::size_t>(t) + i];
-        ay += pair_acc[2 * n * static_cast<std::size_t>(t) + n + i];
-      }
-      p.ax[i] += ax;
-      p.ay[i] += ay;
-    }
+  }
+  return dissipated;
+}
+
+// Momentum loop, pass 2 for chunk c, per particle: the own share
+// P_i sum_j V0_j G_ij, then a = sum / rho0 plus viscosity and hourglass.
+template <bool kHourglass>
+void accelerations(Simulation& sim, RowChunks& chunks, int c) {
+  Particles& p = sim.particles;
+  ReferencePairs& rp = sim.reference;
+  const double *Pxx = rp.px.data(), *Pxy = rp.py.data();
+  const double *Pyx = rp.pyx.data(), *Pyy = rp.pyy.data();
+  const double *sgx = rp.sgx.data(), *sgy = rp.sgy.data();
+  const double* rho0 = p.rho0.data();
+  double* const sum[6] = {p.ax.data(),       p.ay.data(),     rp.visc_ax.data(),
+                          rp.visc_ay.data(), rp.hg_ax.data(), rp.hg_ay.data()};
+  constexpr int kSums = kHourglass ? 6 : 4;
+  chunks.add_spills(c, sum, kSums);
+  for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
+    const double inv_rho0 = 1.0 / rho0[i];
+    const double hx = kHourglass ? sum[4][i] : 0.0, hy = kHourglass ? sum[5][i] : 0.0;
+    sum[0][i] = hx + inv_rho0 * (Pxx[i] * sgx[i] + Pxy[i] * sgy[i] + sum[0][i]);
+    sum[1][i] = hy + inv_rho0 * (Pyx[i] * sgx[i] + Pyy[i] * sgy[i] + sum[1][i]);
+    sum[0][i] += sum[2][i];
+    sum[1][i] += sum[3][i];
+  }
+}
+
+// Chunk c goes to thread c mod team: every chunk is done whatever the team
+// size the runtime grants.
+template <class Pass>
+void for_my_chunks(const RowChunks& chunks, Pass&& pass) {
+  const int team = omp_get_num_threads();
+  for (int c = omp_get_thread_num(); c < chunks.chunks(); c += team) pass(c);
+}
+
+template <bool kHourglass>
+void momentum(Simulation& sim, double dt) {
+  RowChunks& chunks = planned_chunks(sim);
+  double dissipated = 0.0;
+#pragma omp parallel num_threads(chunks.chunks()) reduction(+ : dissipated)
+  {
+    for_my_chunks(chunks, [&](int c) { dissipated += momentum_sums<kHourglass>(sim, chunks, c); });
+#pragma omp barrier
+    for_my_chunks(chunks, [&](int c) { accelerations<kHourglass>(sim, chunks, c); });
   }
   sim.energy.dissipated += dt * dissipated;
 }
 
+// Stress and momentum in one parallel region: three barriers a step.
+template <bool kHourglass>
+void stress_and_momentum(Simulation& sim, double dt) {
+  RowChunks& chunks = planned_chunks(sim);
+  double dissipated = 0.0;
+#pragma omp parallel num_threads(chunks.chunks()) reduction(+ : dissipated)
+  {
+    for_my_chunks(chunks, [&](int c) { displacements(sim, chunks, c); });
+#pragma omp barrier
+    for_my_chunks(chunks, [&](int c) { deformation_sums(sim, chunks, c); });
+#pragma omp barrier
+    for_my_chunks(chunks, [&](int c) { stress_from_deformation(sim, chunks, c); });
+#pragma omp barrier
+    for_my_chunks(chunks, [&](int c) { dissipated += momentum_sums<kHourglass>(sim, chunks, c); });
+#pragma omp barrier
+    for_my_chunks(chunks, [&](int c) { accelerations<kHourglass>(sim, chunks, c); });
+  }
+  sim.energy.dissipated += dt * dissipated;
+}
+
+bool hourglass_ready(const Simulation& sim) {
+  if (!sim.method.hourglass.enabled()) return false;
+  if (sim.reference.w0.size() != sim.reference.j.size() ||
+      sim.reference.hg_ax.size() != sim.particles.n) {
+    throw std::logic_error("hourglass control switched on after total_lagrangian_setup");
+  }
+  return true;
+}
+
 }  // namespace
 
+void total_lagrangian_stress(Simulation& sim) {
+  RowChunks& chunks = planned_chunks(sim);
+#pragma omp parallel num_threads(chunks.chunks())
+  {
+    for_my_chunks(chunks, [&](int c) { displacements(sim, chunks, c); });
+#pragma omp barrier
+    for_my_chunks(chunks, [&](int c) { deformation_sums(sim, chunks, c); });
+#pragma omp barrier
+    for_my_chunks(chunks, [&](int c) { stress_from_deformation(sim, chunks, c); });
+  }
+}
+
 void total_lagrangian_momentum(Simulation& sim, double dt) {
-  if (sim.method.hourglass.enabled()) {
-    if (sim.reference.w0.size() != sim.reference.j.size()) {
-      throw std::logic_error("hourglass control switched on after total_lagrangian_setup");
-    }
-    momentum_loop<true>(sim, dt);
+  if (hourglass_ready(sim)) {
+    momentum<true>(sim, dt);
   } else {
-    momentum_loop<false>(sim, dt);
+    momentum<false>(sim, dt);
+  }
+}
+
+void total_lagrangian_forces(Simulation& sim, double dt) {
+  if (hourglass_ready(sim)) {
+    stress_and_momentum<true>(sim, dt);
+  } else {
+    stress_and_momentum<false>(sim, dt);
   }
 }
 

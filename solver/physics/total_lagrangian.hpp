@@ -13,35 +13,42 @@
 #include <cstdint>
 #include <vector>
 
+#include "solver/neighbours/row_chunks.hpp"
+
 namespace gearsph {
 struct Simulation;
 
-// Fixed pairs of the reference configuration, with everything that never
-// changes cached per entry.
+// Fixed pairs of the reference configuration, each unordered pair once
+// (row i holds the neighbours j > i, sorted), with everything that never
+// changes cached per pair. Every pair loop writes to both ends through
+// RowChunks: half the gathers and half the memory of full rows.
 struct ReferencePairs {
   std::vector<std::uint32_t> rows, j;
-  // Corrected gradients times the neighbour's reference volume V0_j, the
-  // only form in which the pair loops use them (one product and one gather
-  // of V0_j fewer per pair).
-  std::vector<double> gix, giy;  // V0_j B_i grad0_i W_ij
-  std::vector<double> gjx, gjy;  // V0_j B_j grad0_i W_ij
+  // Corrected gradients of the pair, G_ij = C_i grad0_i W_ij and
+  // G_ji = C_j grad0_j W_ji (kernel_correction.hpp); the loops scale them by
+  // the other end's reference volume.
+  std::vector<double> gix, giy;  // G_ij
+  std::vector<double> gjx, gjy;  // G_ji
   std::vector<double> w0;        // W(|X_ij|), kept only with hourglass control
   std::vector<double> dw0;       // dW/dr at |X_ij|
   std::vector<double> px, py;    // P (first Piola-Kirchhoff), cached per particle:
   std::vector<double> pyx, pyy;  // P = [[px, py], [pyx, pyy]]
   std::vector<double> vol0;      // reference volume m/rho0, per particle
   std::vector<double> ux, uy;    // displacement x - X, per particle, refreshed each step
-  // sum_j V0_j B_i grad0_i W_ij per particle: P_i is constant over row i, so
-  // its share of the momentum sum is P_i times this, with no per-pair work.
+  // sum_j V0_j G_ij over all neighbours, per particle: P_i is constant over
+  // i's pairs, so its share of the momentum sum is P_i times this, with no
+  // per-pair work.
   std::vector<double> sgx, sgy;
-  // Rows are sorted by j: entries upper[i] .. rows[i+1] of row i have j > i,
-  // each unordered pair once (the viscosity is evaluated once per pair).
-  std::vector<std::uint32_t> upper;
-  // Per-thread sums of the pair-once viscosity: [threads][x | y][n].
-  std::vector<double> pair_acc;
+  // Viscous and hourglass accelerations, summed apart from the stress share
+  // (the pair-once sums end in the same order as full rows would).
+  std::vector<double> visc_ax, visc_ay, hg_ax, hg_ay;
+  RowChunks chunks;
   // Lame constants per body, so that the step divides nothing per particle.
   std::vector<double> lambda_body, mu_body;
   bool built() const { return !rows.empty(); }
+  std::size_t pairs() const { return j.size(); }
+  // Directed interactions (i, j) and (j, i), as full rows would count them.
+  std::size_t entries() const { return 2 * j.size(); }
 };
 
 namespace physics {
@@ -51,5 +58,7 @@ void total_lagrangian_setup(Simulation& sim);
 void total_lagrangian_stress(Simulation& sim);
 // Accelerations from P, viscosity and (optional) hourglass control.
 void total_lagrangian_momentum(Simulation& sim, double dt);
+// Both of the above in one parallel region (the time step's call).
+void total_lagrangian_forces(Simulation& sim, double dt);
 }  // namespace physics
 }  // namespace gearsph

@@ -84,7 +84,7 @@ nlohmann::json make_summary(const PreparedJob& job, const RunResult& result,
   const NeighbourList& nl = sim.neighbours;
   s["neighbours"] = {{"list_builds", nl.builds()},
                      {"entries_per_particle",
-                      sim.particles.n ? double(std::max(nl.entries(), sim.reference.j.size())) /
+                      sim.particles.n ? double(std::max(nl.entries(), sim.reference.entries())) /
                                             double(sim.particles.n)
                                       : 0.0}};
   s["model"] = scene.description;

@@ -1,0 +1,55 @@
+#include "solver/neighbours/row_chunks.hpp"
+
+#include <algorithm>
+
+namespace gearsph {
+
+void RowChunks::plan(const std::vector<std::uint32_t>& rows, const std::vector<std::uint32_t>& j,
+                     int threads, int components) {
+  const std::size_t n = rows.empty() ? 0 : rows.size() - 1;
+  const int t_count = std::max(1, threads);
+  components_ = components;
+  // Equal shares of pairs plus rows (each row also has per-particle work).
+  const double total = double(rows.empty() ? 0 : rows[n]) + double(n);
+  first_.assign(t_count + 1, n);
+  first_[0] = 0;
+  std::size_t i = 0;
+  for (int c = 1; c < t_count; ++c) {
+    const double target = total * c / t_count;
+    while (i < n && double(rows[i]) + double(i) < target) ++i;
+    first_[c] = i;
+  }
+  cross_.resize(n);
+  reach_.assign(t_count, 0);
+  spill_at_.assign(t_count + 1, 0);
+  for (int c = 0; c < t_count; ++c) {
+    const std::size_t stop = first_[c + 1];
+    reach_[c] = stop;
+    for (std::size_t r = first_[c]; r < stop; ++r) {
+      const auto row_end = j.begin() + rows[r + 1];
+      const auto at = std::lower_bound(j.begin() + rows[r], row_end, stop);
+      cross_[r] = static_cast<std::uint32_t>(at - j.begin());
+      if (at != row_end) reach_[c] = std::max<std::size_t>(reach_[c], *(row_end - 1) + 1);
+    }
+    spill_at_[c + 1] = spill_at_[c] + components * window(c);
+  }
+  spill_.assign(spill_at_[t_count], 0.0);
+}
+
+void RowChunks::add_spills(int c, double* const* dst, int components) {
+  const std::size_t lo = begin(c), hi = end(c);
+  for (int t = 0; t < c; ++t) {
+    const std::size_t w0 = end(t), w1 = reach_[t];
+    const std::size_t from = std::max(lo, w0), to = std::min(hi, w1);
+    if (from >= to) continue;
+    for (int q = 0; q < components; ++q) {
+      double* s = spill(t, q);
+      for (std::size_t i = from; i < to; ++i) {
+        dst[q][i] += s[i - w0];
+        s[i - w0] = 0.0;
+      }
+    }
+  }
+}
+
+}  // namespace gearsph

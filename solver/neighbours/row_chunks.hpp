@@ -1,0 +1,55 @@
+#pragma once
+// Threads for loops over a pair list that stores each unordered pair once
+// (row i holds only neighbours j > i) and writes every pair's result to both
+// ends.
+//
+// The rows are cut into contiguous chunks, one per thread, of about equal
+// numbers of pairs. A pair whose j lies in its row's own chunk writes to j
+// directly: only the chunk's thread touches those rows. The other pairs
+// ("cross" pairs, the tail of each sorted row) write to the chunk's spill
+// window, a buffer for rows past the chunk's end that its pairs reach; after
+// a barrier each thread adds the windows that land on its rows
+// (add_spills). Particles are spatially ordered, so the windows are short:
+// the pairs that straddle a chunk boundary. One thread spills nothing.
+//
+// No locks, no atomics, and with one thread every sum is formed in the same
+// order as a loop over full rows would form it.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace gearsph {
+
+class RowChunks {
+ public:
+  // Cuts rows[0..n] into `threads` chunks and sizes the spill windows for
+  // `components` values per row (the most any loop writes per pair end).
+  void plan(const std::vector<std::uint32_t>& rows, const std::vector<std::uint32_t>& j,
+            int threads, int components);
+  int chunks() const { return static_cast<int>(first_.size()) - 1; }
+  bool planned_for(int threads, int components) const {
+    return chunks() == threads && components_ == components;
+  }
+  // Chunk c owns rows begin(c) .. end(c).
+  std::size_t begin(int c) const { return first_[c]; }
+  std::size_t end(int c) const { return first_[c + 1]; }
+  // Entries cross(i) .. rows[i+1] of row i have j >= end(chunk of i).
+  std::uint32_t cross(std::size_t i) const { return cross_[i]; }
+  // Component q of chunk c's window: index it with j - end(c).
+  double* spill(int c, int q) { return spill_.data() + spill_at_[c] + q * window(c); }
+  // Adds to dst[q][i] every window value that lands on a row of chunk c and
+  // zeroes it, for q < components; call after a barrier that follows the
+  // pair loop.
+  void add_spills(int c, double* const* dst, int components);
+
+ private:
+  std::size_t window(int c) const { return reach_[c] - first_[c + 1]; }
+  std::vector<std::size_t> first_;     // chunk boundaries, chunks + 1 rows
+  std::vector<std::uint32_t> cross_;   // per row
+  std::vector<std::size_t> reach_;     // per chunk: one past the highest j it spills to
+  std::vector<std::size_t> spill_at_;  // per chunk: offset of its window
+  std::vector<double> spill_;
+  int components_ = 0;
+};
+
+}  // namespace gearsph

@@ -1,0 +1,104 @@
+// The fixed pairs of a total-Lagrangian run and their corrected gradients,
+// built once (total_lagrangian.hpp).
+#include <cmath>
+
+#include "solver/core/simulation.hpp"
+#include "solver/physics/kernel_correction.hpp"
+#include "solver/physics/total_lagrangian.hpp"
+
+namespace gearsph::physics {
+
+namespace {
+
+// G = w C phi(d) for one end of a pair (kernel_correction.hpp), w = W'(r)/r.
+void corrected_gradient(const Correction& c, double w, double dx, double dy, double& gx,
+                        double& gy) {
+  const double q0 = dx * dx, q1 = dx * dy, q2 = dy * dy;
+  gx = w * (c.lxx * dx + c.lxy * dy + c.qx[0] * q0 + c.qx[1] * q1 + c.qx[2] * q2);
+  gy = w * (c.lyx * dx + c.lyy * dy + c.qy[0] * q0 + c.qy[1] * q1 + c.qy[2] * q2);
+}
+
+}  // namespace
+
+void total_lagrangian_setup(Simulation& sim) {
+  Particles& p = sim.particles;
+  ReferencePairs& rp = sim.reference;
+  with_kernel(sim.discretization.kernel, sim.h(), [&](const auto& kernel) {
+    {
+      NeighbourList list;  // reference positions: each pair once, j > i
+      list.build(p, kernel.radius, PairSelection::SameBody, /*reference=*/true, sim.threads);
+      rp.rows = std::move(list.rows);
+      rp.j = std::move(list.j);
+      rp.chunks = RowChunks();  // planned for these rows at the first pair loop
+    }
+    const std::size_t n = p.n, m = rp.pairs();
+    // W itself is needed only by hourglass control: without it a pair takes
+    // 8 bytes less (docs/speed-accuracy.md, memory per particle).
+    const bool keep_w = sim.method.hourglass.enabled();
+    rp.w0.assign(keep_w ? m : 0, 0.0);
+    rp.dw0.assign(m, 0.0);
+    for (auto* v : {&rp.px, &rp.py, &rp.pyx, &rp.pyy, &rp.ux, &rp.uy, &rp.visc_ax, &rp.visc_ay}) {
+      v->assign(n, 0.0);
+    }
+    rp.hg_ax.assign(keep_w ? n : 0, 0.0);
+    rp.hg_ay.assign(keep_w ? n : 0, 0.0);
+    rp.vol0.resize(n);
+    for (std::size_t i = 0; i < n; ++i) rp.vol0[i] = p.mass[i] / p.rho0[i];
+
+    // Moment matrices of every particle from its reference neighbourhood. A
+    // pair adds to both ends; particle i thus receives its neighbours in
+    // ascending order (j < i from earlier rows, then its own row), as a
+    // sorted full row would give them.
+    const GradientCorrection requested = sim.method.correction;
+    const bool quadratic = requested == GradientCorrection::Quadratic;
+    std::vector<Correction> corr(n);
+    {
+      std::vector<Moments> mom(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        for (std::uint32_t k = rp.rows[i]; k < rp.rows[i + 1]; ++k) {
+          const std::uint32_t j = rp.j[k];
+          const double dx = p.x0[i] - p.x0[j], dy = p.y0[i] - p.y0[j];
+          const double r = std::sqrt(dx * dx + dy * dy);
+          if (keep_w) rp.w0[k] = kernel.W(r);
+          rp.dw0[k] = kernel.dW(r);
+          mom[i].add(-rp.vol0[j] * rp.dw0[k] / r, dx, dy, quadratic);
+          mom[j].add(-rp.vol0[i] * rp.dw0[k] / r, -dx, -dy, quadratic);
+        }
+      }
+      for (std::size_t i = 0; i < n; ++i) {
+        if (requested != GradientCorrection::None) {
+          corr[i] = correction_from_moments(mom[i], requested, sim.h());
+        }
+        p.correction_order[i] = static_cast<std::uint8_t>(corr[i].order);
+      }
+    }
+
+    // G_ij = -w C_i phi(d) and G_ji = -w C_j phi(-d), d = X_i - X_j, and the
+    // per-particle sums of V0_j G_ij (in the same ascending order).
+    for (auto* v : {&rp.gix, &rp.giy, &rp.gjx, &rp.gjy}) v->assign(m, 0.0);
+    rp.sgx.assign(n, 0.0);
+    rp.sgy.assign(n, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::uint32_t k = rp.rows[i]; k < rp.rows[i + 1]; ++k) {
+        const std::uint32_t j = rp.j[k];
+        const double dx = p.x0[i] - p.x0[j], dy = p.y0[i] - p.y0[j];
+        const double r = std::sqrt(dx * dx + dy * dy);
+        const double dw_r = rp.dw0[k] / r;  // = -w
+        corrected_gradient(corr[i], dw_r, dx, dy, rp.gix[k], rp.giy[k]);
+        corrected_gradient(corr[j], dw_r, -dx, -dy, rp.gjx[k], rp.gjy[k]);
+        rp.sgx[i] += rp.vol0[j] * rp.gix[k];
+        rp.sgy[i] += rp.vol0[j] * rp.giy[k];
+        rp.sgx[j] += rp.vol0[i] * rp.gjx[k];
+        rp.sgy[j] += rp.vol0[i] * rp.gjy[k];
+      }
+    }
+  });
+  rp.lambda_body.clear();
+  rp.mu_body.clear();
+  for (const Body& b : sim.bodies) {
+    rp.lambda_body.push_back(b.material.lame_lambda());
+    rp.mu_body.push_back(b.material.shear_modulus());
+  }
+}
+
+}  // namespace gearsph::physics
