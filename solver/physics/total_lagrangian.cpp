@@ -98,25 +98,31 @@ void stress_from_deformation(Simulation& sim, RowChunks& chunks, int c) {
   const double* lambda_body = rp.lambda_body.data();
   const double* mu_body = rp.mu_body.data();
   double* const m_sum[4] = {p.fxx.data(), p.fxy.data(), p.fyx.data(), p.fyy.data()};
+  // Raw pointers, as in the pair loops: no reload of an array's address
+  // after each store.
+  double *Fxx = p.fxx.data(), *Fxy = p.fxy.data(), *Fyx = p.fyx.data(), *Fyy = p.fyy.data();
+  double *Pxx = rp.px.data(), *Pxy = rp.py.data(), *Pyx = rp.pyx.data(), *Pyy = rp.pyy.data();
+  double *pressure = p.p.data(), *Sxx = p.sxx.data(), *Syy = p.syy.data();
+  double *Szz = p.szz.data(), *Sxy = p.sxy.data(), *rho = p.rho.data(), *rot = p.rot.data();
+  const double *rho0 = p.rho0.data(), *surf_depth = p.surf_depth.data();
+  const std::int32_t* body = p.body.data();
   // Contact candidates (penalty contact only), refreshed before this step's forces.
   const std::uint32_t* contact_rows =
       sim.contacts.rows.size() == p.n + 1 ? sim.contacts.rows.data() : nullptr;
   chunks.add_spills(c, m_sum, 4);
   for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
-    const double fxx = 1.0 + m_sum[0][i], fxy = m_sum[1][i];
-    const double fyx = m_sum[2][i], fyy = 1.0 + m_sum[3][i];
-    p.fxx[i] = fxx;
-    p.fxy[i] = fxy;
-    p.fyx[i] = fyx;
-    p.fyy[i] = fyy;
+    const double fxx = 1.0 + Fxx[i], fxy = Fxy[i];
+    const double fyx = Fyx[i], fyy = 1.0 + Fyy[i];
+    Fxx[i] = fxx;
+    Fyy[i] = fyy;
     // Rotation of the polar decomposition F = R U (2D: one angle); only the
     // contact normals of surface particles with contact candidates use it.
-    if (contact_rows && contact_rows[i] != contact_rows[i + 1] && std::isfinite(p.surf_depth[i])) {
-      p.rot[i] = std::atan2(fyx - fxy, fxx + fyy);
+    if (contact_rows && contact_rows[i] != contact_rows[i + 1] && std::isfinite(surf_depth[i])) {
+      rot[i] = std::atan2(fyx - fxy, fxx + fyy);
     }
 
     // Saint Venant-Kirchhoff, plane strain (E_zz = 0).
-    const int b = p.body[i];
+    const int b = body[i];
     const double lam = lambda_body[b], mu = mu_body[b];
     const double exx = 0.5 * (fxx * fxx + fyx * fyx - 1.0);
     const double eyy = 0.5 * (fxy * fxy + fyy * fyy - 1.0);
@@ -127,10 +133,10 @@ void stress_from_deformation(Simulation& sim, RowChunks& chunks, int c) {
     // P = F S
     const double pxx = fxx * sxx + fxy * sxy, pxy = fxx * sxy + fxy * syy;
     const double pyx = fyx * sxx + fyy * sxy, pyy = fyx * sxy + fyy * syy;
-    rp.px[i] = pxx;
-    rp.py[i] = pxy;
-    rp.pyx[i] = pyx;
-    rp.pyy[i] = pyy;
+    Pxx[i] = pxx;
+    Pxy[i] = pxy;
+    Pyx[i] = pyx;
+    Pyy[i] = pyy;
     // Cauchy sigma = F S F^T / J (sigma_zz = S_zz / J) for output.
     const double inv_jac = 1.0 / (fxx * fyy - fxy * fyx);
     const double cxx = (pxx * fxx + pxy * fxy) * inv_jac;
@@ -138,12 +144,12 @@ void stress_from_deformation(Simulation& sim, RowChunks& chunks, int c) {
     const double cxy = (pxx * fyx + pxy * fyy) * inv_jac;
     const double czz = szz * inv_jac;
     const double mean = (cxx + cyy + czz) / 3.0;
-    p.p[i] = -mean;
-    p.sxx[i] = cxx - mean;
-    p.syy[i] = cyy - mean;
-    p.szz[i] = czz - mean;
-    p.sxy[i] = cxy;
-    p.rho[i] = p.rho0[i] * inv_jac;
+    pressure[i] = -mean;
+    Sxx[i] = cxx - mean;
+    Syy[i] = cyy - mean;
+    Szz[i] = czz - mean;
+    Sxy[i] = cxy;
+    rho[i] = rho0[i] * inv_jac;
   }
 }
 
