@@ -9,6 +9,7 @@
 // every comparison is measured in the same run, interleaved, best of the
 // repeats, and CPU time is printed beside wall time so that a loaded machine
 // shows as wall >> CPU rather than as a slow code.
+#include <malloc.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -112,6 +113,10 @@ struct Timing {
 // Bare time steps, no history, output or peak tracking: what the solver
 // itself costs. Setup (scene, stable step, reference pairs) is not timed.
 Timing time_steps(const json& job, int threads, std::int64_t steps) {
+  // Baseline after handing back what earlier cases freed: the run's own
+  // set-up trims the heap too (integrate::initialise), which would otherwise
+  // count earlier cases' memory against this one.
+  malloc_trim(0);
   const Memory before = memory_now();
   PreparedJob pj = prepare_job(job, threads);
   Simulation& sim = pj.scene.sim;
