@@ -46,8 +46,7 @@ void Particles::add(double px, double py, double m, double density, int body_ind
 }
 
 double Particles::von_mises(std::size_t i) const {
-  const double j2 = 0.5 * (sxx[i] * sxx[i] + syy[i] * syy[i] + szz[i] * szz[i]) + sxy[i] * sxy[i];
-  return std::sqrt(3.0 * j2);
+  return std::sqrt(3.0 * j2(i));
 }
 
 }  // namespace gearsph

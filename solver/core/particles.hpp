@@ -70,7 +70,11 @@ struct Particles {
   double sigma_yy(std::size_t i) const { return -p[i] + syy[i]; }
   double sigma_xy(std::size_t i) const { return sxy[i]; }
   double sigma_zz(std::size_t i) const { return -p[i] + szz[i]; }
-  // von Mises equivalent stress sqrt(3/2 S:S), S with all three normal components.
+  // Second invariant of the deviator, J2 = S:S / 2, S with all three normal
+  // components; von Mises equivalent stress sqrt(3 J2).
+  double j2(std::size_t i) const {
+    return 0.5 * (sxx[i] * sxx[i] + syy[i] * syy[i] + szz[i] * szz[i]) + sxy[i] * sxy[i];
+  }
   double von_mises(std::size_t i) const;
 };
 

@@ -51,14 +51,18 @@ Momentum momentum(const Simulation& sim, int body) {
 StressPeak max_von_mises(const Simulation& sim, int body) {
   const Particles& p = sim.particles;
   StressPeak s;
+  // The largest J2, one square root at the end (called every step): von
+  // Mises = sqrt(3 J2) is monotonic in J2 (Particles::von_mises).
+  double j2_max = 0.0;
   for (std::size_t i = 0; i < p.n; ++i) {
     if (body >= 0 && p.body[i] != body) continue;
-    const double vm = p.von_mises(i);
-    if (vm > s.von_mises) {
-      s.von_mises = vm;
+    const double j2 = p.j2(i);
+    if (j2 > j2_max) {
+      j2_max = j2;
       s.particle = static_cast<long>(i);
     }
   }
+  if (s.particle >= 0) s.von_mises = p.von_mises(static_cast<std::size_t>(s.particle));
   return s;
 }
 
