@@ -2,9 +2,10 @@
 // Verlet neighbour lists with a skin, stored as compressed rows: row i holds
 // every j within `cutoff = support + skin` of i (both directions are stored,
 // so each particle only ever writes to itself: no races, results independent
-// of the thread count; reference lists hold each pair once, see build()). The list is rebuilt only
-// when some particle has moved more than half the skin since the last build (particles move ~1e-8 m
-// per step, so a rebuild every few thousand steps).
+// of the thread count; reference lists hold each pair once, see build()).
+// The list is rebuilt only when some particle has moved more than half the
+// skin since the last build (particles move ~1e-8 m per step, so a rebuild
+// every few thousand steps).
 //
 // Per entry W'(r_ij)/r_ij is cached at the current positions, computed once
 // per step and used by every pair loop: grad_i W_ij = dw_r (x_i - x_j), so
