@@ -15,6 +15,7 @@
 #include "solver/physics/total_lagrangian.hpp"
 #include "solver/physics/velocity_gradient.hpp"
 #include "solver/run/runner.hpp"
+#include "tests/support/steel_block.hpp"
 
 namespace gearsph {
 namespace {
@@ -23,36 +24,17 @@ namespace {
 // optionally, a random jiggle of the positions), no constraints.
 Simulation random_block(int n, Formulation f, GradientCorrection corr, unsigned seed,
                         double jiggle = 0.0) {
-  Simulation sim;
-  const Material mat{2e11, 0.3, 7800};
-  Body b;
-  b.name = "block";
-  b.material = mat;
-  sim.bodies.push_back(b);
-  const double dx = 1e-3;
-  sim.discretization.dx = dx;
-  sim.discretization.h_over_dx = 1.0;
-  sim.discretization.kernel = KernelType::SeedQuartic;
-  sim.method.formulation = f;
-  sim.method.correction = corr;
-  sim.threads = 2;
+  Simulation sim = testing_support::steel_block(n, f, corr, 1.0, 2);
+  const double dx = sim.discretization.dx;
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
-  for (int a = 0; a < n; ++a) {
-    for (int c = 0; c < n; ++c) {
-      sim.particles.add((a + 0.5) * dx, (c + 0.5) * dx, mat.rho0 * dx * dx, mat.rho0, 0, 0);
-    }
-  }
   Particles& p = sim.particles;
   for (std::size_t i = 0; i < p.n; ++i) {
-    p.cs[i] = mat.p_wave_speed();
     p.vx[i] = uni(rng);
     p.vy[i] = uni(rng);
     p.x[i] += jiggle * dx * uni(rng);
     p.y[i] += jiggle * dx * uni(rng);
   }
-  sim.bodies[0].end = p.n;
-  sim.domain = {-1.0, -1.0, 1.0, 1.0};
   return sim;
 }
 

@@ -11,6 +11,7 @@
 #include "solver/integrate/integrator.hpp"
 #include "solver/neighbours/neighbour_list.hpp"
 #include "solver/physics/total_lagrangian.hpp"
+#include "tests/support/steel_block.hpp"
 
 namespace gearsph {
 namespace {
@@ -18,37 +19,19 @@ namespace {
 // A deformed, moving block: random displacements of 2 % of the spacing and
 // random velocities, so that F, P, viscosity and hourglass are all non-zero.
 Simulation deformed_block(int n, int threads, double hourglass) {
-  Simulation sim;
-  const Material mat{2e11, 0.3, 7800};
-  Body b;
-  b.name = "block";
-  b.material = mat;
-  sim.bodies.push_back(b);
-  const double dx = 1e-3;
-  sim.discretization.dx = dx;
-  sim.discretization.h_over_dx = 1.2;
-  sim.discretization.kernel = KernelType::SeedQuartic;
-  sim.method.formulation = Formulation::TotalLagrangian;
-  sim.method.correction = GradientCorrection::Quadratic;
+  Simulation sim = testing_support::steel_block(n, Formulation::TotalLagrangian,
+                                                GradientCorrection::Quadratic, 1.2, threads);
   sim.method.hourglass.coefficient = hourglass;
-  sim.threads = threads;
-  for (int a = 0; a < n; ++a) {
-    for (int c = 0; c < n; ++c) {
-      sim.particles.add((a + 0.5) * dx, (c + 0.5) * dx, mat.rho0 * dx * dx, mat.rho0, 0, 0);
-    }
-  }
+  const double dx = sim.discretization.dx;
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
   Particles& p = sim.particles;
   for (std::size_t i = 0; i < p.n; ++i) {
-    p.cs[i] = mat.p_wave_speed();
     p.x[i] += 0.02 * dx * uni(rng);
     p.y[i] += 0.02 * dx * uni(rng);
     p.vx[i] = uni(rng);
     p.vy[i] = uni(rng);
   }
-  sim.bodies[0].end = p.n;
-  sim.domain = {-1.0, -1.0, 1.0, 1.0};
   return sim;
 }
 

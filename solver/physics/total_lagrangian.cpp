@@ -61,10 +61,6 @@ void deformation_sums(Simulation& sim, RowChunks& chunks, int c) {
     // Row i continues the sums its pairs with j < i began.
     double mxx = m_sum[0][i], mxy = m_sum[1][i], myx = m_sum[2][i], myy = m_sum[3][i];
     auto pairs = [&](std::uint32_t k0, std::uint32_t k1, double* const* to, std::size_t base) {
-      double* __restrict t0 = to[0];
-      double* __restrict t1 = to[1];
-      double* __restrict t2 = to[2];
-      double* __restrict t3 = to[3];
       for (std::uint32_t k = k0; k < k1; ++k) {
         const std::uint32_t j = jj[k];
         const double dux = ux[j] - uxi, duy = uy[j] - uyi;
@@ -76,10 +72,10 @@ void deformation_sums(Simulation& sim, RowChunks& chunks, int c) {
         myy += duy * ay;
         const double bx = vi * gjx[k], by = vi * gjy[k];
         const std::size_t t = j - base;
-        t0[t] += -dux * bx;
-        t1[t] += -dux * by;
-        t2[t] += -duy * bx;
-        t3[t] += -duy * by;
+        to[0][t] += -dux * bx;
+        to[1][t] += -dux * by;
+        to[2][t] += -duy * bx;
+        to[3][t] += -duy * by;
       }
     };
     pairs(rows[i], chunks.cross(i), m_sum, 0);       // j in this chunk
@@ -218,12 +214,6 @@ double momentum_sums(Simulation& sim, RowChunks& chunks, int c) {
     double sx = sum[0][i], sy = sum[1][i], vsx = sum[2][i], vsy = sum[3][i];
     double hsx = kHourglass ? sum[4][i] : 0.0, hsy = kHourglass ? sum[5][i] : 0.0;
     auto pairs = [&](std::uint32_t k0, std::uint32_t k1, double* const* to, std::size_t base) {
-      double* __restrict t0 = to[0];
-      double* __restrict t1 = to[1];
-      double* __restrict t2 = to[2];
-      double* __restrict t3 = to[3];
-      double* __restrict t4 = to[4];
-      double* __restrict t5 = to[5];
       for (std::uint32_t k = k0; k < k1; ++k) {
         const std::uint32_t j = jj[k];
         const std::size_t t = j - base;
@@ -232,8 +222,8 @@ double momentum_sums(Simulation& sim, RowChunks& chunks, int c) {
         sx += Pxx[j] * bx + Pxy[j] * by;
         sy += Pyx[j] * bx + Pyy[j] * by;
         const double ax = -vi * gix[k], ay = -vi * giy[k];  // -V0_i G_ij
-        t0[t] += pxx * ax + pxy * ay;
-        t1[t] += pyx * ax + pyy * ay;
+        to[0][t] += pxx * ax + pxy * ay;
+        to[1][t] += pyx * ax + pyy * ay;
         const double dx = xi - x[j], dy = yi - y[j];
         const double dvx = vxi - vx[j], dvy = vyi - vy[j];
         const double r2 = dx * dx + dy * dy;
@@ -243,8 +233,8 @@ double momentum_sums(Simulation& sim, RowChunks& chunks, int c) {
         const double mj = mass[j];
         vsx -= mj * pg * dx;
         vsy -= mj * pg * dy;
-        t2[t] += mi * pg * dx;
-        t3[t] += mi * pg * dy;
+        to[2][t] += mi * pg * dx;
+        to[3][t] += mi * pg * dy;
         dissipated += mi * mj * pg * vr;  // >= 0: energy removed
         if constexpr (kHourglass) {
           // Ganzenmueller 2015: penalise x_ij - F_mean X_ij along the pair.
@@ -260,8 +250,8 @@ double momentum_sums(Simulation& sim, RowChunks& chunks, int c) {
           const double fj = -0.5 * hg * e_j * vi * (1.0 / rho0[j]) * w0[k] * stretch / R2 * inv_r;
           hsx += fi * dx;
           hsy += fi * dy;
-          t4[t] += fj * -dx;
-          t5[t] += fj * -dy;
+          to[4][t] += fj * -dx;
+          to[5][t] += fj * -dy;
           dissipated -= 0.5 * (mi * fi + mj * fj) * (dvx * dx + dvy * dy);
         }
       }
