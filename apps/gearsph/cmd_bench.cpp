@@ -793,16 +793,11 @@ int pareto_main(Args& args) {
 
 // `gearsph bench [options]` or `gearsph bench pareto [options]`.
 int cmd_bench(int argc, char** argv) {
-  // libgomp reads its wait policy once, before main: threads that spin at
-  // the barriers of a ~0.1 ms time step starve each other as soon as the
-  // cores are shared (measured 20-70x slower on 2 threads under load,
-  // docs/speed-accuracy.md). Unless the caller chose a policy, run again
-  // with threads that sleep at barriers.
-  if (!std::getenv("OMP_WAIT_POLICY")) {
-    setenv("OMP_WAIT_POLICY", "passive", 1);
-    execv("/proc/self/exe", argv);  // returns only on failure: carry on as we are
-  }
-  std::printf("OMP_WAIT_POLICY=%s\n", std::getenv("OMP_WAIT_POLICY"));
+  // The wait policy main() chose, or the caller's (docs/speed-accuracy.md).
+  const char* policy = std::getenv("OMP_WAIT_POLICY");
+  const char* spin = std::getenv("GOMP_SPINCOUNT");
+  std::printf("OpenMP wait: OMP_WAIT_POLICY=%s GOMP_SPINCOUNT=%s\n", policy ? policy : "(unset)",
+              spin ? spin : "(unset)");
   if (argc > 2 && std::string(argv[2]) == "pareto") {
     Args args(argc, argv, 3);
     return pareto_main(args);

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <unistd.h>
+
 #include "apps/gearsph/cli.hpp"
 #ifdef GEARSPH_WITH_RESULTS
 #include "results/register_outputs.hpp"
@@ -99,13 +101,28 @@ int cmd_plot(Args& args);
 }  // namespace gearsph::cli
 #endif
 
+namespace {
+
+// How OpenMP threads wait at a barrier (docs/speed-accuracy.md, Threads).
+// libgomp reads its policy once, when it is loaded, before main: only a
+// fresh process image can choose one. A ~0.1 ms time step hands over
+// between threads ~7 times, so threads that sleep at once (passive) pay a
+// wake-up each time: 2 threads were 2.5x slower than with a short spin.
+// Threads that spin long (the default, 300,000 rounds) starve each other
+// when two runs share the cores: 45x slower. A spin of 1,000 rounds, then
+// sleep, is within 10 % of the fastest alone and 2x slower than passive
+// when shared. A policy the caller set (OMP_WAIT_POLICY, GOMP_SPINCOUNT) is
+// kept.
+void choose_openmp_wait(char** argv) {
+  if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
+  setenv("GOMP_SPINCOUNT", "1000", 1);
+  execv("/proc/self/exe", argv);  // returns only on failure: carry on as we are
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  // OpenMP threads that spin at barriers starve each other when the cores
-  // are shared: 2-thread runs were 8-70x slower (docs/speed-accuracy.md,
-  // Threads). Sleeping costs a wake-up per barrier instead, which small
-  // scenes avoid by running on one thread (threads_for). A policy the user
-  // set is kept. Read by the runtime at its first use.
-  setenv("OMP_WAIT_POLICY", "passive", 0);
+  choose_openmp_wait(argv);
 #ifdef GEARSPH_WITH_RESULTS
   gearsph::results::register_outputs();
 #endif

@@ -8,6 +8,7 @@
 #include "solver/core/simulation.hpp"
 #include "solver/diagnostics/guard.hpp"
 #include "solver/integrate/motion.hpp"
+#include "solver/physics/contact.hpp"
 #include "solver/physics/momentum.hpp"
 #include "solver/physics/stress_rate.hpp"
 #include "solver/physics/total_lagrangian.hpp"
@@ -54,22 +55,32 @@ void refresh_neighbours(Simulation& sim) {
   }
 }
 
-// Accelerations from outside the bodies' own stress: applied loads, contact
-// and (quasi-static scenes) mass-proportional damping.
+// Accelerations from outside the bodies' own stress on particle i: applied
+// loads, (quasi-static scenes) mass-proportional damping and, with
+// `contact`, the contact accelerations of this step. Returns the energy the
+// damping removed over dt.
+inline double external_acceleration(Particles& p, std::size_t i, double ramp, double c, double dt,
+                                    bool contact) {
+  p.ext_ax[i] = ramp * p.load_ax[i] - c * p.vx[i];
+  p.ext_ay[i] = ramp * p.load_ay[i] - c * p.vy[i];
+  if (contact) {
+    p.ext_ax[i] += p.contact_ax[i];
+    p.ext_ay[i] += p.contact_ay[i];
+  }
+  return c * p.mass[i] * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i]) * dt;
+}
+
 void external_forces(Simulation& sim, double dt) {
   Particles& p = sim.particles;
   const std::size_t n = p.n;
-  const double c = sim.damping_1_s;
-  const double ramp = load_ramp(sim);
+  const double c = sim.damping_1_s, ramp = load_ramp(sim);
   double dissipated = 0.0;
 #pragma omp parallel for num_threads(sim.threads) schedule(static) reduction(+ : dissipated)
   for (std::size_t i = 0; i < n; ++i) {
-    p.ext_ax[i] = ramp * p.load_ax[i] - c * p.vx[i];
-    p.ext_ay[i] = ramp * p.load_ay[i] - c * p.vy[i];
-    dissipated += c * p.mass[i] * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i]) * dt;
+    dissipated += external_acceleration(p, i, ramp, c, dt, false);
   }
   sim.energy.dissipated += dissipated;
-  if (penalty_contact(sim)) physics::contact_forces(sim, dt);
+  if (penalty_contact(sim)) physics::contact_forces(sim, dt);  // adds to ext
 }
 
 // Rates and accelerations at the current positions; stress advanced by dt.
@@ -81,6 +92,47 @@ void forces(Simulation& sim, double dt) {
     physics::update_stress(sim, dt);
     physics::momentum(sim, dt);
   }
+}
+
+// A total-Lagrangian step from x^{n+1} (and u = x^{n+1} - X, kick_drift) to
+// v^{n+1} in one parallel region. Each pass runs over the calling thread's
+// chunks of rows (RowChunks); a barrier stands wherever a pass reads what
+// another thread wrote. Three barriers, where separate calls hand over
+// between threads ten times.
+KickPowers total_lagrangian_forces_and_kick(Simulation& sim, double dt) {
+  physics::TotalLagrangianPasses tl = physics::total_lagrangian_passes(sim);
+  const RowChunks& chunks = tl.chunks;
+  const bool contact = penalty_contact(sim);
+  if (contact) physics::prepare_contact(sim);
+  const double damping = sim.damping_1_s, ramp = load_ramp(sim);
+  double viscous = 0.0, damped = 0.0;
+  physics::ContactTally touched;
+  KickPowers power;
+#pragma omp parallel num_threads(chunks.chunks()) reduction(+ : viscous, damped, touched, power)
+  {
+    // F - I from the displacements.
+    for_my_chunks(chunks, [&](int c) { physics::deformation_sums(sim, tl, c); });
+#pragma omp barrier
+    // F, P, sigma, rho; contact normals turned.
+    for_my_chunks(chunks, [&](int c) { physics::stress_from_deformation(sim, tl, c); });
+#pragma omp barrier
+    // Contact (its own static split) and the momentum pair sums.
+    if (contact) physics::contact_pairs(sim, dt, touched);
+    for_my_chunks(chunks, [&](int c) { viscous += physics::momentum_sums(sim, tl, c); });
+#pragma omp barrier
+    // Per particle: a^{n+1}, external accelerations, v^{n+1}.
+    for_my_chunks(chunks, [&](int c) {
+      physics::accelerations(sim, tl, c);
+      for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
+        damped += external_acceleration(sim.particles, i, ramp, damping, dt, contact);
+      }
+      power += closing_kick_particles(sim, 0.5 * dt, chunks.begin(c), chunks.end(c));
+    });
+  }
+  sim.energy.dissipated += dt * viscous;  // the same order as separate calls
+  sim.energy.dissipated += damped;
+  if (contact) physics::record_contact(sim, touched);
+  return power;
 }
 
 }  // namespace
@@ -100,18 +152,35 @@ void initialise(Simulation& sim) {
   malloc_trim(0);
 }
 
-void step(Simulation& sim) {
+namespace {
+
+void advance(Simulation& sim, bool one_region) {
   const double dt = sim.dt;
   const std::size_t outside = kick_drift(sim, dt);  // v^{n+1/2}, x^{n+1}
   sim.time += dt;
   ++sim.step;
-  if (outside > 0) diagnostics::throw_divergence(sim);   // names particle + quantity
-  refresh_neighbours(sim);                               // Verlet lists, skin used up?
-  forces(sim, dt);                                       // rho, S at n+1; a^{n+1}
-  external_forces(sim, dt);                              // loads, contact, damping
-  const KickPowers power = closing_kick(sim, 0.5 * dt);  // v^{n+1}
+  if (outside > 0) diagnostics::throw_divergence(sim);  // names particle + quantity
+  refresh_neighbours(sim);                              // Verlet lists, skin used up?
+  KickPowers power;
+  if (one_region) {
+    power = total_lagrangian_forces_and_kick(sim, dt);  // all three below
+  } else {
+    forces(sim, dt);                      // rho, S at n+1; a^{n+1}
+    external_forces(sim, dt);             // loads, contact, damping
+    power = closing_kick(sim, 0.5 * dt);  // v^{n+1}
+  }
   sim.energy.drive_work += dt * power.drive;
   sim.energy.external_work += dt * power.load;
+}
+
+}  // namespace
+
+void step(Simulation& sim) {
+  advance(sim, total_lagrangian(sim) && !torque_driven(sim));
+}
+
+void step_by_terms(Simulation& sim) {
+  advance(sim, false);
 }
 
 }  // namespace gearsph::integrate

@@ -126,6 +126,11 @@ std::size_t kick_drift(Simulation& sim, double dt) {
   const Motion* motions = sim.motions.data();
   const Box box = sim.domain;
   const double t = sim.time + dt;
+  // The total-Lagrangian F loop reads displacements u = x - X (two gathers
+  // a neighbour instead of four); written here, where x is at hand.
+  const bool reference = sim.reference.ux.size() == n;
+  double* ux = sim.reference.ux.data();
+  double* uy = sim.reference.uy.data();
   std::size_t outside = 0;
   // One pass: each particle's kick needs only its own acceleration.
 #pragma omp parallel for num_threads(sim.threads) schedule(static) reduction(+ : outside)
@@ -133,10 +138,35 @@ std::size_t kick_drift(Simulation& sim, double dt) {
     const Motion& m = motions[p.motion[i]];
     kick_particle(p, m, i, dt_half, true);
     drift_particle(p, m, i, dt, t);
+    if (reference) {
+      ux[i] = p.x[i] - p.x0[i];
+      uy[i] = p.y[i] - p.y0[i];
+    }
     // NaN fails both comparisons, so a non-finite position counts as outside.
     outside += box.contains(p.x[i], p.y[i]) ? 0 : 1;
   }
   return outside;
+}
+
+bool torque_driven(const Simulation& sim) {
+  for (const Motion& m : sim.motions) {
+    if (m.torque_driven) return true;
+  }
+  return false;
+}
+
+KickPowers closing_kick_particles(Simulation& sim, double dt_half, std::size_t lo, std::size_t hi) {
+  Particles& p = sim.particles;
+  const Motion* motions = sim.motions.data();
+  const double ramp = load_ramp(sim);
+  KickPowers power;
+  for (std::size_t i = lo; i < hi; ++i) {
+    const Motion& m = motions[p.motion[i]];
+    kick_particle(p, m, i, dt_half, false);
+    power.drive += drive_power(p, m, i);
+    power.load += ramp * p.mass[i] * (p.load_ax[i] * p.vx[i] + p.load_ay[i] * p.vy[i]);
+  }
+  return power;
 }
 
 KickPowers closing_kick(Simulation& sim, double dt_half) {

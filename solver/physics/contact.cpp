@@ -69,120 +69,148 @@ double contact_time_step_limit(const Simulation& sim) {
   return omega2 > 0.0 ? 2.0 / std::sqrt(omega2) : 0.0;
 }
 
-void contact_forces(Simulation& sim, double dt) {
+ContactTally& ContactTally::operator+=(const ContactTally& o) {
+  active += o.active;
+  stored += o.stored;
+  dissipated += o.dissipated;
+  deepest = std::max(deepest, o.deepest);
+  for (int b = 0; b < kMaxBodies; ++b) {
+    fx[b] += o.fx[b];
+    fy[b] += o.fy[b];
+  }
+  return *this;
+}
+
+void prepare_contact(Simulation& sim) {
+  if (sim.contact.model != ContactModel::Surface) return;
+  sim.contact_state.normal_x.resize(sim.particles.n);  // allocates once
+  sim.contact_state.normal_y.resize(sim.particles.n);
+}
+
+void turn_surface_normal(const Particles& p, ContactState& state, std::size_t i) {
+  const double ci = std::cos(p.rot[i]), si = std::sin(p.rot[i]);
+  state.normal_x[i] = ci * p.surf_nx[i] - si * p.surf_ny[i];
+  state.normal_y[i] = si * p.surf_nx[i] + ci * p.surf_ny[i];
+}
+
+void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
   Particles& p = sim.particles;
   const NeighbourList& nl = sim.contacts;
   const ContactConfig& c = sim.contact;
-  ContactState& state = sim.contact_state;
-  const std::size_t n_bodies = sim.bodies.size();
-  state.force_x.assign(n_bodies, 0.0);
-  state.force_y.assign(n_bodies, 0.0);
-  state.active_pairs = 0;
-  state.max_penetration = 0.0;
-  state.stored_energy = 0.0;
-  if (!is_penalty(c.model)) return;
-
   const double dx = sim.discretization.dx, r0 = c.r0_over_dx * dx;
   const bool surface = c.model == ContactModel::Surface;
+  const double* normal_x = sim.contact_state.normal_x.data();
+  const double* normal_y = sim.contact_state.normal_y.data();
   const std::size_t n = p.n;
-  constexpr int kMaxBodies = 8;
-  double fx_body[kMaxBodies] = {}, fy_body[kMaxBodies] = {};
-  std::int64_t active = 0;
-  double deepest = 0.0, stored = 0.0, dissipated = 0.0;
-
-  if (surface) {
-    state.normal_x.resize(n);  // allocates on the first step only
-    state.normal_y.resize(n);
+#pragma omp for schedule(static) nowait
+  for (std::size_t i = 0; i < n; ++i) {
+    const Material& mi = sim.material_of(i);
+    const double vi = p.mass[i] / p.rho[i];
+    double fx = 0.0, fy = 0.0;
+    for (std::uint32_t k = nl.rows[i]; k < nl.rows[i + 1]; ++k) {
+      const std::uint32_t j = nl.j[k];
+      const double dxij = p.x[i] - p.x[j], dyij = p.y[i] - p.y[j];
+      double nx, ny, overlap, weight = 1.0;
+      if (surface) {
+        // True-surface gap (contact_surface.hpp); normals turned with the material.
+        if (!std::isfinite(p.surf_depth[i]) || !std::isfinite(p.surf_depth[j])) continue;
+        const SurfacePair sp = surface_pair(dxij, dyij, normal_x[i], normal_y[i], normal_x[j],
+                                            normal_y[j], p.surf_depth[i], p.surf_depth[j], dx);
+        if (!sp.active) continue;
+        nx = sp.nx;
+        ny = sp.ny;
+        overlap = sp.overlap;
+        weight = sp.weight;
+      } else {
+        const double r2 = dxij * dxij + dyij * dyij;
+        if (r2 >= r0 * r0) continue;
+        const double r = std::sqrt(r2);
+        overlap = r0 - r;
+        nx = dxij / r;
+        ny = dyij / r;
+      }
+      const Material& mj = sim.material_of(j);
+      const double e_star = contact_modulus(mi, mj);
+      const double vj = p.mass[j] / p.rho[j];
+      const double vol = 2.0 * vi * vj / (vi + vj);
+      PairLaw law = c.model == ContactModel::Hertz
+                        ? hertz_penalty(e_star, dx, overlap)
+                        : seed_penalty(c.D, e_star, vol, surface ? dx : r0, overlap);
+      law.force *= weight;
+      law.stiffness *= weight;
+      law.energy *= weight;
+      // Dashpot on the normal approach speed, as a fraction of critical
+      // damping of the pair oscillator; the total never pulls (no adhesion).
+      const double vn = (p.vx[i] - p.vx[j]) * nx + (p.vy[i] - p.vy[j]) * ny;  // > 0 separating
+      const double m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+      const double damper = 2.0 * c.damping_ratio * std::sqrt(law.stiffness * m_eff);
+      const double f = std::max(0.0, law.force - damper * vn);
+      fx += f * nx;
+      fy += f * ny;
+      // Each pair is seen from both ends: count its energy and the pair once.
+      if (i < j) {
+        ++tally.active;
+        tally.stored += law.energy;
+        tally.dissipated += (f - law.force) * -vn * dt;  // dashpot power times dt
+      }
+      tally.deepest = std::max(tally.deepest, overlap);
+    }
+    p.contact_ax[i] = fx / p.mass[i];
+    p.contact_ay[i] = fy / p.mass[i];
+    const int b = p.body[i];
+    if (b < ContactTally::kMaxBodies) {
+      tally.fx[b] += fx;
+      tally.fy[b] += fy;
+    }
   }
-  double* normal_x = state.normal_x.data();
-  double* normal_y = state.normal_y.data();
+}
 
-#pragma omp parallel num_threads(sim.threads)
+void record_contact(Simulation& sim, const ContactTally& tally) {
+  ContactState& state = sim.contact_state;
+  const std::size_t n_bodies = sim.bodies.size();
+  state.force_x.assign(n_bodies, 0.0);  // allocates on the first step only
+  state.force_y.assign(n_bodies, 0.0);
+  for (std::size_t b = 0; b < n_bodies && b < static_cast<std::size_t>(ContactTally::kMaxBodies);
+       ++b) {
+    state.force_x[b] = tally.fx[b];
+    state.force_y[b] = tally.fy[b];
+  }
+  state.active_pairs = tally.active;
+  state.max_penetration = tally.deepest;
+  state.stored_energy = tally.stored;
+  sim.energy.dissipated += tally.dissipated;
+}
+
+void contact_forces(Simulation& sim, double dt) {
+  if (!is_penalty(sim.contact.model)) {
+    record_contact(sim, ContactTally{});
+    return;
+  }
+  prepare_contact(sim);
+  Particles& p = sim.particles;
+  const NeighbourList& nl = sim.contacts;
+  const bool surface = sim.contact.model == ContactModel::Surface;
+  const std::size_t n = p.n;
+  ContactTally tally;
+#pragma omp parallel num_threads(sim.threads) reduction(+ : tally)
   {
     if (surface) {
 #pragma omp for schedule(static)
       for (std::size_t i = 0; i < n; ++i) {
         // Only particles with candidates need their normal (most have none).
         if (nl.rows[i] == nl.rows[i + 1] || !std::isfinite(p.surf_depth[i])) continue;
-        const double ci = std::cos(p.rot[i]), si = std::sin(p.rot[i]);
-        normal_x[i] = ci * p.surf_nx[i] - si * p.surf_ny[i];
-        normal_y[i] = si * p.surf_nx[i] + ci * p.surf_ny[i];
+        turn_surface_normal(p, sim.contact_state, i);
       }
     }
-#pragma omp for schedule(static) \
-    reduction(+ : active, stored, dissipated, fx_body[:kMaxBodies], fy_body[:kMaxBodies]) \
-    reduction(max : deepest)
+    contact_pairs(sim, dt, tally);
+    // The same static split as the pair loop: each thread adds what it wrote.
+#pragma omp for schedule(static) nowait
     for (std::size_t i = 0; i < n; ++i) {
-      const Material& mi = sim.material_of(i);
-      const double vi = p.mass[i] / p.rho[i];
-      double fx = 0.0, fy = 0.0;
-      for (std::uint32_t k = nl.rows[i]; k < nl.rows[i + 1]; ++k) {
-        const std::uint32_t j = nl.j[k];
-        const double dxij = p.x[i] - p.x[j], dyij = p.y[i] - p.y[j];
-        double nx, ny, overlap, weight = 1.0;
-        if (surface) {
-          // True-surface gap (contact_surface.hpp); normals turned with the material.
-          if (!std::isfinite(p.surf_depth[i]) || !std::isfinite(p.surf_depth[j])) continue;
-          const SurfacePair sp = surface_pair(dxij, dyij, normal_x[i], normal_y[i], normal_x[j],
-                                              normal_y[j], p.surf_depth[i], p.surf_depth[j], dx);
-          if (!sp.active) continue;
-          nx = sp.nx;
-          ny = sp.ny;
-          overlap = sp.overlap;
-          weight = sp.weight;
-        } else {
-          const double r2 = dxij * dxij + dyij * dyij;
-          if (r2 >= r0 * r0) continue;
-          const double r = std::sqrt(r2);
-          overlap = r0 - r;
-          nx = dxij / r;
-          ny = dyij / r;
-        }
-        const Material& mj = sim.material_of(j);
-        const double e_star = contact_modulus(mi, mj);
-        const double vj = p.mass[j] / p.rho[j];
-        const double vol = 2.0 * vi * vj / (vi + vj);
-        PairLaw law = c.model == ContactModel::Hertz
-                          ? hertz_penalty(e_star, dx, overlap)
-                          : seed_penalty(c.D, e_star, vol, surface ? dx : r0, overlap);
-        law.force *= weight;
-        law.stiffness *= weight;
-        law.energy *= weight;
-        // Dashpot on the normal approach speed, as a fraction of critical
-        // damping of the pair oscillator; the total never pulls (no adhesion).
-        const double vn = (p.vx[i] - p.vx[j]) * nx + (p.vy[i] - p.vy[j]) * ny;  // > 0 separating
-        const double m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
-        const double damper = 2.0 * c.damping_ratio * std::sqrt(law.stiffness * m_eff);
-        const double f = std::max(0.0, law.force - damper * vn);
-        fx += f * nx;
-        fy += f * ny;
-        // Each pair is seen from both ends: count its energy and the pair once.
-        if (i < j) {
-          ++active;
-          stored += law.energy;
-          dissipated += (f - law.force) * -vn * dt;  // dashpot power times dt
-        }
-        deepest = std::max(deepest, overlap);
-      }
-      p.contact_ax[i] = fx / p.mass[i];
-      p.contact_ay[i] = fy / p.mass[i];
       p.ext_ax[i] += p.contact_ax[i];
       p.ext_ay[i] += p.contact_ay[i];
-      const int b = p.body[i];
-      if (b < kMaxBodies) {
-        fx_body[b] += fx;
-        fy_body[b] += fy;
-      }
     }
   }
-  for (std::size_t b = 0; b < n_bodies && b < static_cast<std::size_t>(kMaxBodies); ++b) {
-    state.force_x[b] = fx_body[b];
-    state.force_y[b] = fy_body[b];
-  }
-  state.active_pairs = active;
-  state.max_penetration = deepest;
-  state.stored_energy = stored;
-  sim.energy.dissipated += dissipated;
+  record_contact(sim, tally);
 }
 
 }  // namespace physics

@@ -7,6 +7,7 @@
 //
 // Every model computes the pair force F_ij from quantities symmetric in
 // (i, j), so F_ji = -F_ij and momentum is conserved to round-off.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 namespace gearsph {
 
 struct Simulation;
+struct Particles;
 
 enum class ContactModel {
   SeedPenalty,  // the paper's force, linear in the overlap (contact_seed_penalty.hpp)
@@ -56,8 +58,35 @@ bool is_penalty(ContactModel m);
 double contact_time_step_limit(const Simulation& sim);
 
 // Adds contact accelerations to ext_ax/ext_ay (which the caller zeroed) and
-// fills sim.contact_state; dissipated energy goes to the ledger.
+// fills sim.contact_state; dissipated energy goes to the ledger. Its own
+// parallel region; the time step calls the pieces below inside its region.
 void contact_forces(Simulation& sim, double dt);
+
+// What one thread's share of the contact pairs did; summed over threads by
+// an OpenMP reduction (`reduction(+ : tally)`, declared below).
+struct ContactTally {
+  static constexpr int kMaxBodies = 8;  // bodies beyond this get no force total
+  std::int64_t active = 0;
+  double stored = 0.0, dissipated = 0.0, deepest = 0.0;
+  double fx[kMaxBodies] = {}, fy[kMaxBodies] = {};
+  ContactTally& operator+=(const ContactTally& o);
+};
+#pragma omp declare reduction(+ : ContactTally : omp_out += omp_in) \
+    initializer(omp_priv = ContactTally{})
+
+// Sizes the surface model's normals (outside any parallel region; a no-op
+// after the first call).
+void prepare_contact(Simulation& sim);
+// Surface model: particle i's outward normal turned by its material rotation
+// rot, into the state's scratch.
+void turn_surface_normal(const Particles& p, ContactState& state, std::size_t i);
+// The pair loop, as a worksharing loop without its closing barrier (call it
+// from inside a parallel region): contact_ax, contact_ay of every particle,
+// and the calling thread's share of the totals. Reads positions, velocities,
+// density and the turned normals.
+void contact_pairs(Simulation& sim, double dt, ContactTally& tally);
+// The totals of all threads into sim.contact_state and the energy ledger.
+void record_contact(Simulation& sim, const ContactTally& tally);
 
 }  // namespace physics
 }  // namespace gearsph

@@ -1,13 +1,12 @@
 #include "solver/physics/total_lagrangian.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "solver/core/simulation.hpp"
 #include "solver/physics/artificial_viscosity.hpp"
+#include "solver/physics/contact.hpp"
 
 namespace gearsph::physics {
 
@@ -41,7 +40,7 @@ void displacements(Simulation& sim, const RowChunks& chunks, int c) {
 // and M_j += V0_i (u_i - u_j) (x) G_ji, with displacements u = x - X so that
 // round-off does not swamp strains of 1e-6 on positions of 1e-1 m (the small
 // terms are summed first, then added to I).
-void deformation_sums(Simulation& sim, RowChunks& chunks, int c) {
+void deformation_pairs(Simulation& sim, RowChunks& chunks, int c) {
   const ReferencePairs& rp = sim.reference;
   const std::uint32_t* rows = rp.rows.data();
   const std::uint32_t* jj = rp.j.data();
@@ -88,7 +87,7 @@ void deformation_sums(Simulation& sim, RowChunks& chunks, int c) {
 }
 
 // F loop, pass 2 for chunk c, per particle: F, then P and the Cauchy stress.
-void stress_from_deformation(Simulation& sim, RowChunks& chunks, int c) {
+void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
   Particles& p = sim.particles;
   ReferencePairs& rp = sim.reference;
   const double* lambda_body = rp.lambda_body.data();
@@ -102,9 +101,12 @@ void stress_from_deformation(Simulation& sim, RowChunks& chunks, int c) {
   double *Szz = p.szz.data(), *Sxy = p.sxy.data(), *rho = p.rho.data(), *rot = p.rot.data();
   const double *rho0 = p.rho0.data(), *surf_depth = p.surf_depth.data();
   const std::int32_t* body = p.body.data();
-  // Contact candidates (penalty contact only), refreshed before this step's forces.
+  // Contact candidates (penalty contact only), refreshed before this step's
+  // forces, and their normals' scratch (sized when the list was built).
   const std::uint32_t* contact_rows =
       sim.contacts.rows.size() == p.n + 1 ? sim.contacts.rows.data() : nullptr;
+  ContactState& touch = sim.contact_state;
+  const bool normals = touch.normal_x.size() == p.n;
   chunks.add_spills(c, m_sum, 4);
   for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
     const double fxx = 1.0 + Fxx[i], fxy = Fxy[i];
@@ -115,6 +117,8 @@ void stress_from_deformation(Simulation& sim, RowChunks& chunks, int c) {
     // contact normals of surface particles with contact candidates use it.
     if (contact_rows && contact_rows[i] != contact_rows[i + 1] && std::isfinite(surf_depth[i])) {
       rot[i] = std::atan2(fyx - fxy, fxx + fyy);
+      // Turned here, where the particle is at hand, not in a pass of its own.
+      if (normals) turn_surface_normal(p, touch, i);
     }
 
     // Saint Venant-Kirchhoff, plane strain (E_zz = 0).
@@ -174,7 +178,7 @@ inline double viscosity_pair(double dw0, double h, double vr, double r2, double 
 // Momentum loop, pass 1 for chunk c; returns the energy the viscosity and
 // hourglass control removed per unit time.
 template <bool kHourglass>
-double momentum_sums(Simulation& sim, RowChunks& chunks, int c) {
+double momentum_pairs(Simulation& sim, RowChunks& chunks, int c) {
   Particles& p = sim.particles;
   ReferencePairs& rp = sim.reference;
   const ArtificialViscosity& av = sim.method.viscosity;
@@ -273,7 +277,7 @@ double momentum_sums(Simulation& sim, RowChunks& chunks, int c) {
 // Momentum loop, pass 2 for chunk c, per particle: the own share
 // P_i sum_j V0_j G_ij, then a = sum / rho0 plus viscosity and hourglass.
 template <bool kHourglass>
-void accelerations(Simulation& sim, RowChunks& chunks, int c) {
+void accelerations_per_particle(Simulation& sim, RowChunks& chunks, int c) {
   Particles& p = sim.particles;
   ReferencePairs& rp = sim.reference;
   const double *Pxx = rp.px.data(), *Pxy = rp.py.data();
@@ -294,23 +298,15 @@ void accelerations(Simulation& sim, RowChunks& chunks, int c) {
   }
 }
 
-// Chunk c goes to thread c mod team: every chunk is done whatever the team
-// size the runtime grants.
-template <class Pass>
-void for_my_chunks(const RowChunks& chunks, Pass&& pass) {
-  const int team = omp_get_num_threads();
-  for (int c = omp_get_thread_num(); c < chunks.chunks(); c += team) pass(c);
-}
-
 template <bool kHourglass>
 void momentum(Simulation& sim, double dt) {
   RowChunks& chunks = planned_chunks(sim);
   double dissipated = 0.0;
 #pragma omp parallel num_threads(chunks.chunks()) reduction(+ : dissipated)
   {
-    for_my_chunks(chunks, [&](int c) { dissipated += momentum_sums<kHourglass>(sim, chunks, c); });
+    for_my_chunks(chunks, [&](int c) { dissipated += momentum_pairs<kHourglass>(sim, chunks, c); });
 #pragma omp barrier
-    for_my_chunks(chunks, [&](int c) { accelerations<kHourglass>(sim, chunks, c); });
+    for_my_chunks(chunks, [&](int c) { accelerations_per_particle<kHourglass>(sim, chunks, c); });
   }
   sim.energy.dissipated += dt * dissipated;
 }
@@ -324,13 +320,13 @@ void stress_and_momentum(Simulation& sim, double dt) {
   {
     for_my_chunks(chunks, [&](int c) { displacements(sim, chunks, c); });
 #pragma omp barrier
-    for_my_chunks(chunks, [&](int c) { deformation_sums(sim, chunks, c); });
+    for_my_chunks(chunks, [&](int c) { deformation_pairs(sim, chunks, c); });
 #pragma omp barrier
-    for_my_chunks(chunks, [&](int c) { stress_from_deformation(sim, chunks, c); });
+    for_my_chunks(chunks, [&](int c) { stress_per_particle(sim, chunks, c); });
 #pragma omp barrier
-    for_my_chunks(chunks, [&](int c) { dissipated += momentum_sums<kHourglass>(sim, chunks, c); });
+    for_my_chunks(chunks, [&](int c) { dissipated += momentum_pairs<kHourglass>(sim, chunks, c); });
 #pragma omp barrier
-    for_my_chunks(chunks, [&](int c) { accelerations<kHourglass>(sim, chunks, c); });
+    for_my_chunks(chunks, [&](int c) { accelerations_per_particle<kHourglass>(sim, chunks, c); });
   }
   sim.energy.dissipated += dt * dissipated;
 }
@@ -352,9 +348,9 @@ void total_lagrangian_stress(Simulation& sim) {
   {
     for_my_chunks(chunks, [&](int c) { displacements(sim, chunks, c); });
 #pragma omp barrier
-    for_my_chunks(chunks, [&](int c) { deformation_sums(sim, chunks, c); });
+    for_my_chunks(chunks, [&](int c) { deformation_pairs(sim, chunks, c); });
 #pragma omp barrier
-    for_my_chunks(chunks, [&](int c) { stress_from_deformation(sim, chunks, c); });
+    for_my_chunks(chunks, [&](int c) { stress_per_particle(sim, chunks, c); });
   }
 }
 
@@ -363,6 +359,32 @@ void total_lagrangian_momentum(Simulation& sim, double dt) {
     momentum<true>(sim, dt);
   } else {
     momentum<false>(sim, dt);
+  }
+}
+
+TotalLagrangianPasses total_lagrangian_passes(Simulation& sim) {
+  const bool hourglass = hourglass_ready(sim);
+  return {planned_chunks(sim), hourglass};
+}
+
+void deformation_sums(Simulation& sim, TotalLagrangianPasses& tl, int c) {
+  deformation_pairs(sim, tl.chunks, c);
+}
+
+void stress_from_deformation(Simulation& sim, TotalLagrangianPasses& tl, int c) {
+  stress_per_particle(sim, tl.chunks, c);
+}
+
+double momentum_sums(Simulation& sim, TotalLagrangianPasses& tl, int c) {
+  return tl.hourglass ? momentum_pairs<true>(sim, tl.chunks, c)
+                      : momentum_pairs<false>(sim, tl.chunks, c);
+}
+
+void accelerations(Simulation& sim, TotalLagrangianPasses& tl, int c) {
+  if (tl.hourglass) {
+    accelerations_per_particle<true>(sim, tl.chunks, c);
+  } else {
+    accelerations_per_particle<false>(sim, tl.chunks, c);
   }
 }
 

@@ -54,6 +54,29 @@ struct ReferencePairs {
 namespace physics {
 // Builds the reference pairs and the corrected gradients (once per run).
 void total_lagrangian_setup(Simulation& sim);
+
+// The passes of a step, for the integrator's own parallel region
+// (integrate/integrator.cpp). Each runs over chunk c of the rows; a pass
+// reads what the one before it wrote on other threads' rows, so a barrier
+// separates them. Thread t runs chunks t, t + team, ...
+struct TotalLagrangianPasses {
+  RowChunks& chunks;
+  bool hourglass;
+};
+// Plans the chunks for sim.threads (once per run); call outside the region.
+TotalLagrangianPasses total_lagrangian_passes(Simulation& sim);
+// Pass 1: the sums M of F = I + M, from the displacements u = x - X that
+// the drift left in sim.reference.ux, uy (integrate/motion.hpp).
+void deformation_sums(Simulation& sim, TotalLagrangianPasses& tl, int c);
+// Pass 2: F, P, the Cauchy stress and density per particle, and the turned
+// contact normals of surface particles with contact candidates.
+void stress_from_deformation(Simulation& sim, TotalLagrangianPasses& tl, int c);
+// Pass 3: the pair sums of the momentum equation; returns the power the
+// viscosity and hourglass control remove [W/m].
+double momentum_sums(Simulation& sim, TotalLagrangianPasses& tl, int c);
+// Pass 4: a from the pair sums, per particle.
+void accelerations(Simulation& sim, TotalLagrangianPasses& tl, int c);
+
 // F from current positions, then P and the Cauchy stress for output.
 void total_lagrangian_stress(Simulation& sim);
 // Accelerations from P, viscosity and (optional) hourglass control.
