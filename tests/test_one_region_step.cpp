@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "solver/core/simulation.hpp"
+#include "solver/diagnostics/energy.hpp"
 #include "solver/integrate/integrator.hpp"
 #include "solver/job/job.hpp"
 
@@ -88,6 +89,21 @@ TEST(OneRegionStep, GivesTheSameBitsAsSeparateRegions) {
     const double round_off = threads == 1 ? 0.0 : 1e-12;
     EXPECT_NEAR(a.energy.dissipated, b.energy.dissipated, round_off * a.energy.dissipated);
     EXPECT_NEAR(a.energy.external_work, b.energy.external_work, round_off * a.energy.external_work);
+  }
+}
+
+// Peak tracking takes the largest J2 that the stress pass found per chunk:
+// the same particle and value as a scan over all particles, on any team.
+TEST(OneRegionStep, TheStressPassFindsThePeakAScanFinds) {
+  for (int threads : {1, 2, 3}) {
+    Simulation sim = run(threads, integrate::step);
+    ASSERT_EQ(sim.largest_j2.step, sim.step) << "the step's stress pass left no peak";
+    const diagnostics::StressPeak found = diagnostics::max_von_mises(sim);
+    sim.largest_j2.step = -1;  // forces the scan
+    const diagnostics::StressPeak scanned = diagnostics::max_von_mises(sim);
+    ASSERT_GE(scanned.particle, 0);
+    EXPECT_EQ(found.particle, scanned.particle) << threads << " threads";
+    EXPECT_EQ(found.von_mises, scanned.von_mises) << threads << " threads";
   }
 }
 

@@ -51,7 +51,8 @@ struct Particles {
   // Surface of the body, for contact (scene/surfaces.hpp): outward normal in
   // the reference configuration and depth of the particle below the surface;
   // depth = +inf for interior particles. rot: current rotation angle of the
-  // material around the particle (CCW), which turns the normal.
+  // material around the particle (CCW), which turns the normal (updated
+  // Lagrangian; the total-Lagrangian stress pass turns it by F's rotation).
   std::vector<double> surf_nx, surf_ny, surf_depth, rot;
 
   void resize(std::size_t count);

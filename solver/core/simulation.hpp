@@ -30,6 +30,15 @@ struct EnergyLedger {
   double external_work = 0.0;  // work of external forces (loads, contact)
 };
 
+// The largest J2 of the stress at one step and its particle, found by the
+// total-Lagrangian stress pass while the stress is at hand, so that peak
+// tracking needs no pass of its own (diagnostics::max_von_mises).
+struct LargestJ2 {
+  double j2 = 0.0;
+  long particle = -1;      // -1: every J2 is zero
+  std::int64_t step = -1;  // the step whose stress it describes; -1: none
+};
+
 struct Simulation {
   Particles particles;
   std::vector<Body> bodies;
@@ -54,6 +63,7 @@ struct Simulation {
   // Applied loads grow linearly from zero over this time (0: at once) [s].
   double load_ramp_s = 0.0;
   EnergyLedger energy;
+  LargestJ2 largest_j2;
 
   double h() const { return discretization.h(); }
   const Material& material_of(std::size_t i) const { return bodies[particles.body[i]].material; }

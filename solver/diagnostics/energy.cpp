@@ -51,6 +51,12 @@ Momentum momentum(const Simulation& sim, int body) {
 StressPeak max_von_mises(const Simulation& sim, int body) {
   const Particles& p = sim.particles;
   StressPeak s;
+  // Found by this step's stress pass (total Lagrangian): no pass here.
+  if (body < 0 && sim.largest_j2.step == sim.step) {
+    s.particle = sim.largest_j2.particle;
+    if (s.particle >= 0) s.von_mises = p.von_mises(static_cast<std::size_t>(s.particle));
+    return s;
+  }
   // The largest J2, one square root at the end (called every step): von
   // Mises = sqrt(3 J2) is monotonic in J2 (Particles::von_mises).
   double j2_max = 0.0;

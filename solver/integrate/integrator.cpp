@@ -30,7 +30,9 @@ bool penalty_contact(const Simulation& sim) {
   return sim.bodies.size() > 1 && physics::is_penalty(sim.contact.model);
 }
 
-void refresh_neighbours(Simulation& sim) {
+// `contacts_moved`: the drift found a particle beyond half the contact
+// list's skin (kick_drift), so the list needs no scan of its own here.
+void refresh_neighbours(Simulation& sim, bool contacts_moved) {
   const double skin = kSkinOverDx * sim.discretization.dx;
   if (!total_lagrangian(sim) &&
       (sim.neighbours.builds() == 0 || sim.neighbours.needs_rebuild(sim.particles))) {
@@ -43,8 +45,7 @@ void refresh_neighbours(Simulation& sim) {
     sim.neighbours.set_skin(skin);
     sim.neighbours.build(sim.particles, radius + skin, selection, /*reference=*/false, sim.threads);
   }
-  if (penalty_contact(sim) &&
-      (sim.contacts.builds() == 0 || sim.contacts.needs_rebuild(sim.particles))) {
+  if (penalty_contact(sim) && (contacts_moved || !sim.contacts.built_for(sim.particles.n))) {
     sim.contacts.set_skin(skin);
     // Surface contact reaches particles up to 1.5 dx below each surface.
     const double reach = sim.contact.model == ContactModel::Surface
@@ -52,6 +53,7 @@ void refresh_neighbours(Simulation& sim) {
                              : sim.contact.r0_over_dx * sim.discretization.dx;
     sim.contacts.build(sim.particles, reach + skin, PairSelection::OtherBody,
                        /*reference=*/false, sim.threads);
+    physics::prepare_contact(sim);  // the normals' scratch, before any stress pass
   }
 }
 
@@ -103,7 +105,6 @@ KickPowers total_lagrangian_forces_and_kick(Simulation& sim, double dt) {
   physics::TotalLagrangianPasses tl = physics::total_lagrangian_passes(sim);
   const RowChunks& chunks = tl.chunks;
   const bool contact = penalty_contact(sim);
-  if (contact) physics::prepare_contact(sim);
   const double damping = sim.damping_1_s, ramp = load_ramp(sim);
   double viscous = 0.0, damped = 0.0;
   physics::ContactTally touched;
@@ -132,6 +133,7 @@ KickPowers total_lagrangian_forces_and_kick(Simulation& sim, double dt) {
   sim.energy.dissipated += dt * viscous;  // the same order as separate calls
   sim.energy.dissipated += damped;
   if (contact) physics::record_contact(sim, touched);
+  physics::gather_largest_j2(sim);
   return power;
 }
 
@@ -142,7 +144,7 @@ void initialise(Simulation& sim) {
     physics::total_lagrangian_setup(sim);
     sim.particles.release_updated_lagrangian();  // this run never takes a UL step
   }
-  refresh_neighbours(sim);
+  refresh_neighbours(sim, sim.contacts.needs_rebuild(sim.particles));
   forces(sim, 0.0);  // accelerations at t = 0, stress unchanged
   external_forces(sim, 0.0);
   // The setup's temporaries (moment matrices, the stable-step estimate's
@@ -156,11 +158,11 @@ namespace {
 
 void advance(Simulation& sim, bool one_region) {
   const double dt = sim.dt;
-  const std::size_t outside = kick_drift(sim, dt);  // v^{n+1/2}, x^{n+1}
+  const Drift drift = kick_drift(sim, dt);  // v^{n+1/2}, x^{n+1}
   sim.time += dt;
   ++sim.step;
-  if (outside > 0) diagnostics::throw_divergence(sim);  // names particle + quantity
-  refresh_neighbours(sim);                              // Verlet lists, skin used up?
+  if (drift.outside > 0) diagnostics::throw_divergence(sim);  // names particle + quantity
+  refresh_neighbours(sim, drift.contacts_moved > 0);          // Verlet lists, skin used up?
   KickPowers power;
   if (one_region) {
     power = total_lagrangian_forces_and_kick(sim, dt);  // all three below

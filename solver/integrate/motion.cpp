@@ -1,5 +1,7 @@
 #include "solver/integrate/motion.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -115,7 +117,7 @@ inline void drift_particle(Particles& p, const Motion& m, std::size_t i, double 
 
 }  // namespace
 
-std::size_t kick_drift(Simulation& sim, double dt) {
+Drift kick_drift(Simulation& sim, double dt) {
   const double dt_half = 0.5 * dt;
   for (std::size_t k = 0; k < sim.motions.size(); ++k) {
     if (sim.motions[k].torque_driven) spin(sim, k, dt_half);
@@ -131,21 +133,41 @@ std::size_t kick_drift(Simulation& sim, double dt) {
   const bool reference = sim.reference.ux.size() == n;
   double* ux = sim.reference.ux.data();
   double* uy = sim.reference.uy.data();
-  std::size_t outside = 0;
+  // The contact list's skin check, here where the new position is at hand.
+  const NeighbourList* contacts = sim.contacts.built_for(n) ? &sim.contacts : nullptr;
   // One pass: each particle's kick needs only its own acceleration.
-#pragma omp parallel for num_threads(sim.threads) schedule(static) reduction(+ : outside)
-  for (std::size_t i = 0; i < n; ++i) {
-    const Motion& m = motions[p.motion[i]];
-    kick_particle(p, m, i, dt_half, true);
-    drift_particle(p, m, i, dt, t);
-    if (reference) {
-      ux[i] = p.x[i] - p.x0[i];
-      uy[i] = p.y[i] - p.y0[i];
+  auto move = [&](std::size_t lo, std::size_t hi, Drift& d) {
+    for (std::size_t i = lo; i < hi; ++i) {
+      const Motion& m = motions[p.motion[i]];
+      kick_particle(p, m, i, dt_half, true);
+      drift_particle(p, m, i, dt, t);
+      if (reference) {
+        ux[i] = p.x[i] - p.x0[i];
+        uy[i] = p.y[i] - p.y0[i];
+      }
+      // NaN fails both comparisons, so a non-finite position counts as outside.
+      d.outside += box.contains(p.x[i], p.y[i]) ? 0 : 1;
+      d.contacts_moved += contacts && contacts->moved_too_far(i, p.x[i], p.y[i]) ? 1 : 0;
     }
-    // NaN fails both comparisons, so a non-finite position counts as outside.
-    outside += box.contains(p.x[i], p.y[i]) ? 0 : 1;
+  };
+  // Total-Lagrangian runs move the rows each thread owns in the force passes
+  // (RowChunks): what a thread writes in the step stays in its own cache.
+  const RowChunks& chunks = sim.reference.chunks;
+  const bool by_chunks = chunks.chunks() == std::max(1, sim.threads);
+  std::size_t outside = 0, contacts_moved = 0;
+#pragma omp parallel num_threads(sim.threads) reduction(+ : outside, contacts_moved)
+  {
+    Drift d;
+    if (by_chunks) {
+      for_my_chunks(chunks, [&](int c) { move(chunks.begin(c), chunks.end(c), d); });
+    } else {
+      const std::size_t team = omp_get_num_threads(), me = omp_get_thread_num();
+      move(n * me / team, n * (me + 1) / team, d);
+    }
+    outside += d.outside;
+    contacts_moved += d.contacts_moved;
   }
-  return outside;
+  return {outside, contacts_moved};
 }
 
 bool torque_driven(const Simulation& sim) {

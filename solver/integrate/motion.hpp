@@ -27,8 +27,11 @@ struct KickPowers {
 // then x^{n+1} = x^n + dt v^{n+1/2}; driven particles are placed exactly at
 // time sim.time + dt (no drift of a rotating hub over a million steps).
 // Total-Lagrangian runs also get their displacements x^{n+1} - X here.
-// Returns the number of particles outside the domain afterwards.
-std::size_t kick_drift(Simulation& sim, double dt);
+struct Drift {
+  std::size_t outside = 0;         // particles outside the domain afterwards
+  std::size_t contacts_moved = 0;  // beyond half the contact list's skin
+};
+Drift kick_drift(Simulation& sim, double dt);
 // v^{n+1} = v^{n+1/2} + dt_half a^{n+1}; prescribed velocities at the new
 // positions. The powers at v^{n+1} are summed in the same pass.
 KickPowers closing_kick(Simulation& sim, double dt_half);

@@ -68,10 +68,8 @@ void NeighbourList::build(const Particles& p, double cutoff, PairSelection selec
 
 bool NeighbourList::needs_rebuild(const Particles& p) const {
   if (x_built_.size() != p.n) return true;
-  const double limit2 = 0.25 * skin_ * skin_;
   for (std::size_t i = 0; i < p.n; ++i) {
-    const double dx = p.x[i] - x_built_[i], dy = p.y[i] - y_built_[i];
-    if (dx * dx + dy * dy > limit2) return true;
+    if (moved_too_far(i, p.x[i], p.y[i])) return true;
   }
   return false;
 }

@@ -43,6 +43,14 @@ class NeighbourList {
   void build(const Particles& p, double cutoff, PairSelection selection, bool reference,
              int threads);
   bool needs_rebuild(const Particles& p) const;
+  // needs_rebuild for one particle at (x, y), for a pass that has the
+  // position at hand; only for lists built for the present particles
+  // (built_for).
+  bool moved_too_far(std::size_t i, double x, double y) const {
+    const double dx = x - x_built_[i], dy = y - y_built_[i];
+    return dx * dx + dy * dy > 0.25 * skin_ * skin_;
+  }
+  bool built_for(std::size_t n) const { return builds_ > 0 && x_built_.size() == n; }
   std::size_t entries() const { return j.size(); }
   std::size_t builds() const { return builds_; }
   double cutoff() const { return cutoff_; }

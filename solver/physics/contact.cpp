@@ -87,12 +87,6 @@ void prepare_contact(Simulation& sim) {
   sim.contact_state.normal_y.resize(sim.particles.n);
 }
 
-void turn_surface_normal(const Particles& p, ContactState& state, std::size_t i) {
-  const double ci = std::cos(p.rot[i]), si = std::sin(p.rot[i]);
-  state.normal_x[i] = ci * p.surf_nx[i] - si * p.surf_ny[i];
-  state.normal_y[i] = si * p.surf_nx[i] + ci * p.surf_ny[i];
-}
-
 void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
   Particles& p = sim.particles;
   const NeighbourList& nl = sim.contacts;
@@ -189,17 +183,19 @@ void contact_forces(Simulation& sim, double dt) {
   prepare_contact(sim);
   Particles& p = sim.particles;
   const NeighbourList& nl = sim.contacts;
-  const bool surface = sim.contact.model == ContactModel::Surface;
+  // Total-Lagrangian stress passes have turned the normals already.
+  const bool turn = sim.contact.model == ContactModel::Surface &&
+                    sim.method.formulation == Formulation::UpdatedLagrangian;
   const std::size_t n = p.n;
   ContactTally tally;
 #pragma omp parallel num_threads(sim.threads) reduction(+ : tally)
   {
-    if (surface) {
+    if (turn) {
 #pragma omp for schedule(static)
       for (std::size_t i = 0; i < n; ++i) {
         // Only particles with candidates need their normal (most have none).
         if (nl.rows[i] == nl.rows[i + 1] || !std::isfinite(p.surf_depth[i])) continue;
-        turn_surface_normal(p, sim.contact_state, i);
+        turn_surface_normal(p, sim.contact_state, i, std::cos(p.rot[i]), std::sin(p.rot[i]));
       }
     }
     contact_pairs(sim, dt, tally);

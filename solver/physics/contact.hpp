@@ -12,10 +12,11 @@
 #include <string>
 #include <vector>
 
+#include "solver/core/particles.hpp"
+
 namespace gearsph {
 
 struct Simulation;
-struct Particles;
 
 enum class ContactModel {
   SeedPenalty,  // the paper's force, linear in the overlap (contact_seed_penalty.hpp)
@@ -75,11 +76,17 @@ struct ContactTally {
     initializer(omp_priv = ContactTally{})
 
 // Sizes the surface model's normals (outside any parallel region; a no-op
-// after the first call).
+// after the first call). Called when the contact list is built.
 void prepare_contact(Simulation& sim);
-// Surface model: particle i's outward normal turned by its material rotation
-// rot, into the state's scratch.
-void turn_surface_normal(const Particles& p, ContactState& state, std::size_t i);
+// Surface model: particle i's outward normal turned by its material
+// rotation, given as its cosine c and sine s, into the state's scratch. The
+// total-Lagrangian stress pass turns them by F's rotation; contact_forces
+// turns them by the updated-Lagrangian angle rot.
+inline void turn_surface_normal(const Particles& p, ContactState& state, std::size_t i, double c,
+                                double s) {
+  state.normal_x[i] = c * p.surf_nx[i] - s * p.surf_ny[i];
+  state.normal_y[i] = s * p.surf_nx[i] + c * p.surf_ny[i];
+}
 // The pair loop, as a worksharing loop without its closing barrier (call it
 // from inside a parallel region): contact_ax, contact_ay of every particle,
 // and the calling thread's share of the totals. Reads positions, velocities,

@@ -43,6 +43,10 @@ struct ReferencePairs {
   // (the pair-once sums end in the same order as full rows would).
   std::vector<double> visc_ax, visc_ay, hg_ax, hg_ay;
   RowChunks chunks;
+  // Per chunk: the largest J2 of its rows and where (stress pass), gathered
+  // into Simulation::largest_j2.
+  std::vector<double> chunk_j2;
+  std::vector<long> chunk_peak;
   // Lame constants per body, so that the step divides nothing per particle.
   std::vector<double> lambda_body, mu_body;
   bool built() const { return !rows.empty(); }
@@ -68,9 +72,13 @@ TotalLagrangianPasses total_lagrangian_passes(Simulation& sim);
 // Pass 1: the sums M of F = I + M, from the displacements u = x - X that
 // the drift left in sim.reference.ux, uy (integrate/motion.hpp).
 void deformation_sums(Simulation& sim, TotalLagrangianPasses& tl, int c);
-// Pass 2: F, P, the Cauchy stress and density per particle, and the turned
-// contact normals of surface particles with contact candidates.
+// Pass 2: F, P, the Cauchy stress and density per particle, the turned
+// contact normals of surface particles with contact candidates, and the
+// chunk's largest J2.
 void stress_from_deformation(Simulation& sim, TotalLagrangianPasses& tl, int c);
+// After pass 2, outside the region: the chunks' largest J2 into
+// sim.largest_j2, for this step.
+void gather_largest_j2(Simulation& sim);
 // Pass 3: the pair sums of the momentum equation; returns the power the
 // viscosity and hourglass control remove [W/m].
 double momentum_sums(Simulation& sim, TotalLagrangianPasses& tl, int c);
