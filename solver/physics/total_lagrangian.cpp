@@ -172,7 +172,13 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
 // denominator, without the neighbour's mass: Pi_ij dW/dr / r with
 // Pi = h v.x (beta h v.x - alpha c q) / (q^2 rho), q = r^2 + eta^2, so the
 // pair costs one square root and one division. Separating pairs (v.x >= 0)
-// are not damped. Symmetric in i and j.
+// are not damped. Symmetric in i and j. GCC branches around the division
+// for them: near the mesh, where approaching and separating pairs mix at
+// random, the mispredictions make a pair ~35 % dearer than elsewhere, and
+// the thread holding those rows waits less for the other than it is waited
+// for. A branch-free form (min(v.x, 0) in the product) balanced the threads
+// but made every pair pay the division: 10 % more time in this loop on one
+// thread, so the branch stays (docs/speed-accuracy.md).
 inline double viscosity_pair(double dw0, double h, double vr, double r2, double q, double alpha,
                              double beta, double c_mean, double rho_mean) {
   const double num = dw0 * h * vr * (beta * h * vr - alpha * c_mean * q);
@@ -181,8 +187,8 @@ inline double viscosity_pair(double dw0, double h, double vr, double r2, double 
 }
 
 // The pair loop of the momentum equation, one instantiation with and one
-// without hourglass control: raw pointers and no branches (the viscosity's
-// switch is a select). Each pair once, written to both ends (RowChunks):
+// without hourglass control: raw pointers, and no branch but the
+// viscosity's (above). Each pair once, written to both ends (RowChunks):
 //   stress share  a_i += -V0_j P_j G_ji / rho0_i,  a_j += -V0_i P_i G_ij / rho0_j
 //   viscosity     a_i -= m_j Pi_ij g_ij,           a_j += m_i Pi_ij g_ij
 // (equal and opposite: momentum is conserved exactly). The own share
