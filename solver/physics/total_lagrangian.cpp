@@ -175,10 +175,10 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
 // are not damped. Symmetric in i and j. GCC branches around the division
 // for them: near the mesh, where approaching and separating pairs mix at
 // random, the mispredictions make a pair ~35 % dearer than elsewhere, and
-// the thread holding those rows waits less for the other than it is waited
-// for. A branch-free form (min(v.x, 0) in the product) balanced the threads
-// but made every pair pay the division: 10 % more time in this loop on one
-// thread, so the branch stays (docs/speed-accuracy.md).
+// the other thread waits for the one holding those rows. A branch-free
+// form (min(v.x, 0) in the product) balanced the threads but made every
+// pair pay the division: 10 % more time in this loop on one thread, so the
+// branch stays (docs/speed-accuracy.md).
 inline double viscosity_pair(double dw0, double h, double vr, double r2, double q, double alpha,
                              double beta, double c_mean, double rho_mean) {
   const double num = dw0 * h * vr * (beta * h * vr - alpha * c_mean * q);
