@@ -3,15 +3,19 @@
 // scene where every term of the region acts: stress, viscosity, surface
 // contact with turned normals and a dashpot, a ramped load and mass damping
 // (the quasi-static Hertz cylinder, pressed into its block from the start).
+// The region also kicks and drifts the particles and, on one thread,
+// rebuilds the contact list when its skin is used up.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "solver/core/simulation.hpp"
 #include "solver/diagnostics/energy.hpp"
 #include "solver/integrate/integrator.hpp"
+#include "solver/integrate/motion.hpp"
 #include "solver/job/job.hpp"
 
 namespace gearsph {
@@ -72,6 +76,31 @@ TEST(OneRegionStep, EveryTermActsInTheTestScene) {
   EXPECT_GT(sim.energy.dissipated, 0.0);
 }
 
+// The meshing gear moves its contact surfaces by half the list's skin every
+// few hundred steps: the region rebuilds the contact list on one thread,
+// and the particles' values still match the separate regions' bit for bit.
+TEST(OneRegionStep, RebuildsTheContactListLikeSeparateRegions) {
+  auto gear = [](int threads, auto&& step) {
+    PreparedJob prepared = prepare_job({{"scene", {{"type", "rack_pinion"}}}}, threads);
+    Simulation sim = prepared.scene.sim;
+    sim.threads = threads;
+    integrate::initialise(sim);
+    while (sim.contacts.builds() < 2 && sim.step < 20000) step(sim);
+    return sim;
+  };
+  for (int threads : {1, 2}) {
+    const Simulation a = gear(threads, integrate::step_by_terms);
+    const Simulation b = gear(threads, integrate::step);
+    ASSERT_FALSE(integrate::torque_driven(b)) << "this scene would not take the region's step";
+    ASSERT_EQ(b.contacts.builds(), 2u) << "no rebuild in 20000 steps";
+    ASSERT_EQ(a.step, b.step) << "the lists were rebuilt at different steps";
+    for (const Field& f : kFields) {
+      EXPECT_EQ(relative_difference(a.particles.*f.values, b.particles.*f.values), 0.0)
+          << f.name << ", " << threads << " threads";
+    }
+  }
+}
+
 // The region runs the same passes over the same chunks of rows and the same
 // split of the contact loop as the separate regions, so every particle's
 // values come out bit for bit; only the step's totals (powers, dissipation)
@@ -89,6 +118,27 @@ TEST(OneRegionStep, GivesTheSameBitsAsSeparateRegions) {
     const double round_off = threads == 1 ? 0.0 : 1e-12;
     EXPECT_NEAR(a.energy.dissipated, b.energy.dissipated, round_off * a.energy.dissipated);
     EXPECT_NEAR(a.energy.external_work, b.energy.external_work, round_off * a.energy.external_work);
+  }
+}
+
+// A particle thrown out of the domain stops the step inside the region: the
+// force passes are skipped and the step names the particle, on any team.
+TEST(OneRegionStep, AParticleLeavingTheDomainStopsTheStep) {
+  for (int threads : {1, 2}) {
+    Simulation sim = pressed_cylinder(threads);
+    integrate::initialise(sim);
+    for (int s = 0; s < 3; ++s) integrate::step(sim);
+    const std::size_t lost = sim.particles.n / 2;
+    sim.particles.vx[lost] = 10.0 * (sim.domain.x_max - sim.domain.x_min) / sim.dt;
+    try {
+      integrate::step(sim);
+      ADD_FAILURE() << "the step went on, " << threads << " threads";
+    } catch (const DivergenceError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("particle " + std::to_string(lost)), std::string::npos) << what;
+      EXPECT_NE(what.find("left the domain"), std::string::npos) << what;
+    }
+    EXPECT_EQ(sim.step, 4);
   }
 }
 

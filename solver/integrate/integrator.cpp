@@ -3,6 +3,7 @@
 #include <malloc.h>
 
 #include <cmath>
+#include <exception>
 #include <sstream>
 
 #include "solver/core/simulation.hpp"
@@ -96,45 +97,84 @@ void forces(Simulation& sim, double dt) {
   }
 }
 
-// A total-Lagrangian step from x^{n+1} (and u = x^{n+1} - X, kick_drift) to
-// v^{n+1} in one parallel region. Each pass runs over the calling thread's
+// A whole total-Lagrangian step, x^n and v^n to x^{n+1} and v^{n+1}, in one
+// parallel region (no torque-driven groups: their spin needs every
+// particle's acceleration first). Each pass runs over the calling thread's
 // chunks of rows (RowChunks); a barrier stands wherever a pass reads what
-// another thread wrote. Three barriers, where separate calls hand over
-// between threads ten times.
-KickPowers total_lagrangian_forces_and_kick(Simulation& sim, double dt) {
+// another thread wrote. Returns the drift's findings; with a particle
+// outside the domain the force passes are skipped and the caller stops the
+// run.
+struct RegionStep {
+  Drift drift;
+  KickPowers power;
+};
+
+RegionStep total_lagrangian_step(Simulation& sim, double dt) {
   physics::TotalLagrangianPasses tl = physics::total_lagrangian_passes(sim);
   const RowChunks& chunks = tl.chunks;
   const bool contact = penalty_contact(sim);
-  const double damping = sim.damping_1_s, ramp = load_ramp(sim);
-  double viscous = 0.0, damped = 0.0;
+  const double damping = sim.damping_1_s;
+  place_rotations(sim, dt);
+  double ramp = 0.0, viscous = 0.0, damped = 0.0;
+  Drift drift;
+  std::exception_ptr failed;
   physics::ContactTally touched;
   KickPowers power;
 #pragma omp parallel num_threads(chunks.chunks()) reduction(+ : viscous, damped, touched, power)
   {
-    // F - I from the displacements.
-    for_my_chunks(chunks, [&](int c) { physics::deformation_sums(sim, tl, c); });
-#pragma omp barrier
-    // F, P, sigma, rho; contact normals turned.
-    for_my_chunks(chunks, [&](int c) { physics::stress_from_deformation(sim, tl, c); });
-#pragma omp barrier
-    // Contact (its own static split) and the momentum pair sums.
-    if (contact) physics::contact_pairs(sim, dt, touched);
-    for_my_chunks(chunks, [&](int c) { viscous += physics::momentum_sums(sim, tl, c); });
-#pragma omp barrier
-    // Per particle: a^{n+1}, external accelerations, v^{n+1}.
+    // v^{n+1/2}, x^{n+1}, u = x - X.
+    Drift mine;
     for_my_chunks(chunks, [&](int c) {
-      physics::accelerations(sim, tl, c);
-      for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
-        damped += external_acceleration(sim.particles, i, ramp, damping, dt, contact);
-      }
-      power += closing_kick_particles(sim, 0.5 * dt, chunks.begin(c), chunks.end(c));
+      kick_drift_particles(sim, dt, chunks.begin(c), chunks.end(c), mine);
     });
+#pragma omp atomic
+    drift.outside += mine.outside;
+#pragma omp atomic
+    drift.contacts_moved += mine.contacts_moved;
+#pragma omp barrier
+    // One thread: the clock, and the contact list if its skin is used up
+    // (about every 3,000 steps of the meshing gear; built on one thread here).
+#pragma omp single
+    {
+      sim.time += dt;
+      ++sim.step;
+      ramp = load_ramp(sim);
+      if (drift.outside == 0) {
+        try {
+          refresh_neighbours(sim, drift.contacts_moved > 0);
+        } catch (...) {
+          failed = std::current_exception();
+        }
+      }
+    }
+    if (drift.outside == 0 && !failed) {
+      // F - I from the displacements.
+      for_my_chunks(chunks, [&](int c) { physics::deformation_sums(sim, tl, c); });
+#pragma omp barrier
+      // F, P, sigma, rho; contact normals turned.
+      for_my_chunks(chunks, [&](int c) { physics::stress_from_deformation(sim, tl, c); });
+#pragma omp barrier
+      // Contact (its own static split) and the momentum pair sums.
+      if (contact) physics::contact_pairs(sim, dt, touched);
+      for_my_chunks(chunks, [&](int c) { viscous += physics::momentum_sums(sim, tl, c); });
+#pragma omp barrier
+      // Per particle: a^{n+1}, external accelerations, v^{n+1}.
+      for_my_chunks(chunks, [&](int c) {
+        physics::accelerations(sim, tl, c);
+        for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
+          damped += external_acceleration(sim.particles, i, ramp, damping, dt, contact);
+        }
+        power += closing_kick_particles(sim, 0.5 * dt, chunks.begin(c), chunks.end(c));
+      });
+    }
   }
+  if (failed) std::rethrow_exception(failed);
+  if (drift.outside > 0) return {drift, power};
   sim.energy.dissipated += dt * viscous;  // the same order as separate calls
   sim.energy.dissipated += damped;
   if (contact) physics::record_contact(sim, touched);
   physics::gather_largest_j2(sim);
-  return power;
+  return {drift, power};
 }
 
 }  // namespace
@@ -158,18 +198,20 @@ namespace {
 
 void advance(Simulation& sim, bool one_region) {
   const double dt = sim.dt;
-  const Drift drift = kick_drift(sim, dt);  // v^{n+1/2}, x^{n+1}
-  sim.time += dt;
-  ++sim.step;
-  if (drift.outside > 0) diagnostics::throw_divergence(sim);  // names particle + quantity
-  refresh_neighbours(sim, drift.contacts_moved > 0);          // Verlet lists, skin used up?
   KickPowers power;
   if (one_region) {
-    power = total_lagrangian_forces_and_kick(sim, dt);  // all three below
+    const RegionStep done = total_lagrangian_step(sim, dt);  // all of the below
+    if (done.drift.outside > 0) diagnostics::throw_divergence(sim);
+    power = done.power;
   } else {
-    forces(sim, dt);                      // rho, S at n+1; a^{n+1}
-    external_forces(sim, dt);             // loads, contact, damping
-    power = closing_kick(sim, 0.5 * dt);  // v^{n+1}
+    const Drift drift = kick_drift(sim, dt);  // v^{n+1/2}, x^{n+1}
+    sim.time += dt;
+    ++sim.step;
+    if (drift.outside > 0) diagnostics::throw_divergence(sim);  // names particle + quantity
+    refresh_neighbours(sim, drift.contacts_moved > 0);          // Verlet lists, skin used up?
+    forces(sim, dt);                                            // rho, S at n+1; a^{n+1}
+    external_forces(sim, dt);                                   // loads, contact, damping
+    power = closing_kick(sim, 0.5 * dt);                        // v^{n+1}
   }
   sim.energy.drive_work += dt * power.drive;
   sim.energy.external_work += dt * power.load;

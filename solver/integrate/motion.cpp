@@ -41,18 +41,6 @@ double drive_power(const Particles& p, const Motion& m, std::size_t i) {
   return -p.mass[i] * (ax * p.vx[i] + ay * p.vy[i]);
 }
 
-// The angle of each driven rotation at x^{n+1}, once per group.
-void place_rotations(Simulation& sim, double dt) {
-  const double t = sim.time + dt;
-  for (Motion& m : sim.motions) {
-    if (m.kind != Motion::Kind::Rotation) continue;
-    // Held: placed exactly at omega t, no drift over a million steps.
-    m.angle = m.torque_driven ? m.angle + dt * m.omega : m.omega * t;
-    m.cos_next = std::cos(m.angle);
-    m.sin_next = std::sin(m.angle);
-  }
-}
-
 // Half-step velocity of particle i. Before the drift a driven rotation gets
 // the chord velocity (x^{n+1} - x^n)/dt of its exact placement, whose
 // gradient, mapped to mid-step, is a pure spin (no dilatation); after it,
@@ -117,17 +105,25 @@ inline void drift_particle(Particles& p, const Motion& m, std::size_t i, double 
 
 }  // namespace
 
-Drift kick_drift(Simulation& sim, double dt) {
-  const double dt_half = 0.5 * dt;
-  for (std::size_t k = 0; k < sim.motions.size(); ++k) {
-    if (sim.motions[k].torque_driven) spin(sim, k, dt_half);
+// The angle of each driven rotation at x^{n+1}, once per group.
+void place_rotations(Simulation& sim, double dt) {
+  const double t = sim.time + dt;
+  for (Motion& m : sim.motions) {
+    if (m.kind != Motion::Kind::Rotation) continue;
+    // Held: placed exactly at omega t, no drift over a million steps.
+    m.angle = m.torque_driven ? m.angle + dt * m.omega : m.omega * t;
+    m.cos_next = std::cos(m.angle);
+    m.sin_next = std::sin(m.angle);
   }
-  place_rotations(sim, dt);
+}
+
+void kick_drift_particles(Simulation& sim, double dt, std::size_t lo, std::size_t hi,
+                          Drift& drift) {
   Particles& p = sim.particles;
   const std::size_t n = p.n;
   const Motion* motions = sim.motions.data();
   const Box box = sim.domain;
-  const double t = sim.time + dt;
+  const double dt_half = 0.5 * dt, t = sim.time + dt;
   // The total-Lagrangian F loop reads displacements u = x - X (two gathers
   // a neighbour instead of four); written here, where x is at hand.
   const bool reference = sim.reference.ux.size() == n;
@@ -135,21 +131,26 @@ Drift kick_drift(Simulation& sim, double dt) {
   double* uy = sim.reference.uy.data();
   // The contact list's skin check, here where the new position is at hand.
   const NeighbourList* contacts = sim.contacts.built_for(n) ? &sim.contacts : nullptr;
-  // One pass: each particle's kick needs only its own acceleration.
-  auto move = [&](std::size_t lo, std::size_t hi, Drift& d) {
-    for (std::size_t i = lo; i < hi; ++i) {
-      const Motion& m = motions[p.motion[i]];
-      kick_particle(p, m, i, dt_half, true);
-      drift_particle(p, m, i, dt, t);
-      if (reference) {
-        ux[i] = p.x[i] - p.x0[i];
-        uy[i] = p.y[i] - p.y0[i];
-      }
-      // NaN fails both comparisons, so a non-finite position counts as outside.
-      d.outside += box.contains(p.x[i], p.y[i]) ? 0 : 1;
-      d.contacts_moved += contacts && contacts->moved_too_far(i, p.x[i], p.y[i]) ? 1 : 0;
+  for (std::size_t i = lo; i < hi; ++i) {
+    const Motion& m = motions[p.motion[i]];
+    kick_particle(p, m, i, dt_half, true);
+    drift_particle(p, m, i, dt, t);
+    if (reference) {
+      ux[i] = p.x[i] - p.x0[i];
+      uy[i] = p.y[i] - p.y0[i];
     }
-  };
+    // NaN fails both comparisons, so a non-finite position counts as outside.
+    drift.outside += box.contains(p.x[i], p.y[i]) ? 0 : 1;
+    drift.contacts_moved += contacts && contacts->moved_too_far(i, p.x[i], p.y[i]) ? 1 : 0;
+  }
+}
+
+Drift kick_drift(Simulation& sim, double dt) {
+  for (std::size_t k = 0; k < sim.motions.size(); ++k) {
+    if (sim.motions[k].torque_driven) spin(sim, k, 0.5 * dt);
+  }
+  place_rotations(sim, dt);
+  const std::size_t n = sim.particles.n;
   // Total-Lagrangian runs move the rows each thread owns in the force passes
   // (RowChunks): what a thread writes in the step stays in its own cache.
   const RowChunks& chunks = sim.reference.chunks;
@@ -159,10 +160,11 @@ Drift kick_drift(Simulation& sim, double dt) {
   {
     Drift d;
     if (by_chunks) {
-      for_my_chunks(chunks, [&](int c) { move(chunks.begin(c), chunks.end(c), d); });
+      for_my_chunks(
+          chunks, [&](int c) { kick_drift_particles(sim, dt, chunks.begin(c), chunks.end(c), d); });
     } else {
       const std::size_t team = omp_get_num_threads(), me = omp_get_thread_num();
-      move(n * me / team, n * (me + 1) / team, d);
+      kick_drift_particles(sim, dt, n * me / team, n * (me + 1) / team, d);
     }
     outside += d.outside;
     contacts_moved += d.contacts_moved;

@@ -32,6 +32,12 @@ struct Drift {
   std::size_t contacts_moved = 0;  // beyond half the contact list's skin
 };
 Drift kick_drift(Simulation& sim, double dt);
+// kick_drift in parts, for a caller's parallel region (integrator.cpp):
+// first, once, the angle of each driven rotation at sim.time + dt (only for
+// scenes without torque-driven groups: torque_driven), then the kick and
+// drift of particles lo .. hi, adding what it finds to `drift`.
+void place_rotations(Simulation& sim, double dt);
+void kick_drift_particles(Simulation& sim, double dt, std::size_t lo, std::size_t hi, Drift& drift);
 // v^{n+1} = v^{n+1/2} + dt_half a^{n+1}; prescribed velocities at the new
 // positions. The powers at v^{n+1} are summed in the same pass.
 KickPowers closing_kick(Simulation& sim, double dt_half);
