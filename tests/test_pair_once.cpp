@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "solver/core/simulation.hpp"
 #include "solver/integrate/integrator.hpp"
 #include "solver/neighbours/neighbour_list.hpp"
+#include "solver/neighbours/row_chunks.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 #include "tests/support/steel_block.hpp"
 
@@ -148,6 +150,63 @@ TEST(PairOnce, AnyThreadCountGivesTheSameForcesToRoundOff) {
                 1e-12 * std::abs(one.energy.dissipated));
   }
   EXPECT_GT(one.energy.dissipated, 0.0);
+}
+
+// Chunks are cut at equal cost: pairs plus one per row, plus the weighted
+// extra. Eight rows of three pairs each (cost 4 a row, 32 in all): the cut
+// falls after row 3. With an extra of 4 on the last four rows at weight 0.5
+// (costs 4, 4, 4, 4, 6, 6, 6, 6; 40 in all) the first chunk takes rows until
+// it holds at least half: 4 + 4 + 4 + 4 + 6 = 22, so through row 4.
+TEST(PairOnce, ChunksAreCutAtEqualCost) {
+  std::vector<std::uint32_t> rows = {0}, j;
+  const std::uint32_t n = 8;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    for (std::uint32_t k = 1; k <= 3; ++k) j.push_back(i + k);
+    rows.push_back(static_cast<std::uint32_t>(j.size()));
+  }
+  RowChunks chunks;
+  chunks.plan(rows, j, 2, 1);
+  EXPECT_EQ(chunks.end(0), 4u);
+  const std::vector<std::uint32_t> extra = {0, 0, 0, 0, 4, 4, 4, 4};
+  chunks.plan(rows, j, 2, 1, extra.data(), 0.5);
+  EXPECT_EQ(chunks.end(0), 5u);
+  chunks.plan(rows, j, 2, 1, extra.data(), 0.0);
+  EXPECT_EQ(chunks.end(0), 4u);
+}
+
+// Every 1024 steps the chunks are cut again from the pairs the last
+// momentum pass counted as approaching. A block whose upper half is
+// squeezed (its pairs approach) and whose lower half stands still: the cut
+// moves, it is the cut those counts give, and two runs repeat bit for bit.
+TEST(PairOnce, ChunksFollowTheApproachingPairsAndRunsRepeatBitForBit) {
+  auto squeezed = [] {
+    Simulation sim = deformed_block(20, 2, 0.0);
+    Particles& p = sim.particles;
+    double y_mid = 0.0;
+    for (std::size_t i = 0; i < p.n; ++i) y_mid += p.y[i] / static_cast<double>(p.n);
+    for (std::size_t i = 0; i < p.n; ++i) {
+      const bool upper = p.y[i] > y_mid;
+      p.vx[i] = upper ? -2.0 * (p.x[i] - p.x[0]) : 0.0;
+      p.vy[i] = 0.0;
+    }
+    integrate::initialise(sim);
+    return sim;
+  };
+  Simulation a = squeezed();
+  const std::size_t by_pairs = a.reference.chunks.end(0);
+  for (int s = 0; s < 1023; ++s) integrate::step(a);
+  RowChunks expected;
+  expected.plan(a.reference.rows, a.reference.j, 2, 6, a.reference.approaching.data(), 0.64);
+  integrate::step(a);  // step 1024 cuts again before its passes
+  ASSERT_EQ(a.reference.planned_step, 1024);
+  EXPECT_EQ(a.reference.chunks.end(0), expected.end(0));
+  EXPECT_NE(a.reference.chunks.end(0), by_pairs) << "the counts did not move the cut";
+  Simulation b = squeezed();
+  for (int s = 0; s < 1024; ++s) integrate::step(b);
+  for (std::size_t i = 0; i < a.particles.n; ++i) {
+    ASSERT_EQ(a.particles.x[i], b.particles.x[i]) << i;
+    ASSERT_EQ(a.particles.vx[i], b.particles.vx[i]) << i;
+  }
 }
 
 }  // namespace

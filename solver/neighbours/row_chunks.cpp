@@ -5,18 +5,24 @@
 namespace gearsph {
 
 void RowChunks::plan(const std::vector<std::uint32_t>& rows, const std::vector<std::uint32_t>& j,
-                     int threads, int components) {
+                     int threads, int components, const std::uint32_t* extra, double extra_weight) {
   const std::size_t n = rows.empty() ? 0 : rows.size() - 1;
   const int t_count = std::max(1, threads);
   components_ = components;
-  // Equal shares of pairs plus rows (each row also has per-particle work).
-  const double total = double(rows.empty() ? 0 : rows[n]) + double(n);
+  // Equal shares of the cost: pairs plus rows (each row also has
+  // per-particle work), plus the weighted extra.
+  auto cost = [&](std::size_t r) {
+    return double(rows[r + 1] - rows[r]) + 1.0 + (extra ? extra_weight * extra[r] : 0.0);
+  };
+  double total = 0.0;
+  for (std::size_t r = 0; r < n; ++r) total += cost(r);
   first_.assign(t_count + 1, n);
   first_[0] = 0;
   std::size_t i = 0;
+  double before = 0.0;  // cost of rows 0 .. i
   for (int c = 1; c < t_count; ++c) {
     const double target = total * c / t_count;
-    while (i < n && double(rows[i]) + double(i) < target) ++i;
+    while (i < n && before < target) before += cost(i++);
     first_[c] = i;
   }
   cross_.resize(n);

@@ -4,13 +4,14 @@
 // ends.
 //
 // The rows are cut into contiguous chunks, one per thread, of about equal
-// numbers of pairs. A pair whose j lies in its row's own chunk writes to j
-// directly: only the chunk's thread touches those rows. The other pairs
-// ("cross" pairs, the tail of each sorted row) write to the chunk's spill
-// window, a buffer for rows past the chunk's end that its pairs reach; after
-// a barrier each thread adds the windows that land on its rows
-// (add_spills). Particles are spatially ordered, so the windows are short:
-// the pairs that straddle a chunk boundary. One thread spills nothing.
+// cost (pairs, optionally weighted per row: plan). A pair whose j lies in
+// its row's own chunk writes to j directly: only the chunk's thread touches
+// those rows. The other pairs ("cross" pairs, the tail of each sorted row)
+// write to the chunk's spill window, a buffer for rows past the chunk's end
+// that its pairs reach; after a barrier each thread adds the windows that
+// land on its rows (add_spills). Particles are spatially ordered, so the
+// windows are short: the pairs that straddle a chunk boundary. One thread
+// spills nothing.
 //
 // No locks, no atomics, and with one thread every sum is formed in the same
 // order as a loop over full rows would form it.
@@ -24,10 +25,14 @@ namespace gearsph {
 
 class RowChunks {
  public:
-  // Cuts rows[0..n] into `threads` chunks and sizes the spill windows for
-  // `components` values per row (the most any loop writes per pair end).
+  // Cuts rows[0..n] into `threads` chunks of about equal cost and sizes the
+  // spill windows for `components` values per row (the most any loop writes
+  // per pair end). A row costs its pairs plus one, plus `extra_weight`
+  // times extra[row] when `extra` is given (per-row work that varies, such
+  // as the pairs whose viscosity acts).
   void plan(const std::vector<std::uint32_t>& rows, const std::vector<std::uint32_t>& j,
-            int threads, int components);
+            int threads, int components, const std::uint32_t* extra = nullptr,
+            double extra_weight = 0.0);
   int chunks() const { return static_cast<int>(first_.size()) - 1; }
   bool planned_for(int threads, int components) const {
     return chunks() == threads && components_ == components;

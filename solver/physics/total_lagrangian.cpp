@@ -16,11 +16,33 @@ namespace {
 // momentum loop 6 (stress share, viscosity, hourglass).
 constexpr int kSpillComponents = 6;
 
-RowChunks& planned_chunks(Simulation& sim) {
+// The threads' chunks of rows for the step `step` computes. They are cut at
+// the start by pairs, and again every kReplanSteps steps with each row's
+// approaching pairs (v_ij . x_ij < 0, counted by the last momentum pass)
+// weighted kApproachingPairCost more. In the meshing gear 52 % of the
+// pinion's pairs approach against 28-34 % of the rack's; cut by pairs
+// alone, the thread holding the pinion took 14-20 % longer over the
+// momentum pass (docs/speed-accuracy.md, fifth round). The counts are a
+// function of the state, not of timing, so a run repeats bit for bit; a
+// new cut changes which sums spill, so the round-off.
+constexpr long kReplanSteps = 1024;
+// Fitted to the paper's gear on this machine (4 chunks, one thread): a pair
+// costs the F pass 3.5 ns and the momentum pass 5.7 ns, and 5.9 ns more
+// when it approaches (the division, the square root, the branch's
+// mispredictions). Weighting F and momentum together, 5.9 / 9.2 = 0.64:
+// their sum is then even between the threads (4.84 s against 4.89 s).
+constexpr double kApproachingPairCost = 0.64;
+
+RowChunks& planned_chunks(Simulation& sim, long step) {
   ReferencePairs& rp = sim.reference;
   const int threads = std::max(1, sim.threads);
-  if (!rp.chunks.planned_for(threads, kSpillComponents)) {
-    rp.chunks.plan(rp.rows, rp.j, threads, kSpillComponents);  // once per run
+  const bool first = !rp.chunks.planned_for(threads, kSpillComponents);
+  const bool due = threads > 1 && step % kReplanSteps == 0 && step != rp.planned_step;
+  if (first || due) {
+    const bool counted = rp.approaching.size() + 1 == rp.rows.size();
+    rp.chunks.plan(rp.rows, rp.j, threads, kSpillComponents,
+                   counted ? rp.approaching.data() : nullptr, kApproachingPairCost);
+    rp.planned_step = step;
     rp.chunk_j2.assign(threads, 0.0);
     rp.chunk_peak.assign(threads, -1);
   }
@@ -173,12 +195,12 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
 // Pi = h v.x (beta h v.x - alpha c q) / (q^2 rho), q = r^2 + eta^2, so the
 // pair costs one square root and one division. Separating pairs (v.x >= 0)
 // are not damped. Symmetric in i and j. GCC branches around the division
-// for them: near the mesh, where approaching and separating pairs mix at
-// random, the mispredictions make a pair ~35 % dearer than elsewhere, and
-// the other thread waits for the one holding those rows. A branch-free
-// form (min(v.x, 0) in the product) balanced the threads but made every
-// pair pay the division: 10 % more time in this loop on one thread, so the
-// branch stays (docs/speed-accuracy.md).
+// for them. Where more pairs approach, and approaching and separating pairs
+// mix at random (the rotating pinion), a pair costs more: the division, and
+// the mispredictions. The chunks are cut with those pairs weighted
+// (planned_chunks). A branch-free form (min(v.x, 0) in the product) made
+// every pair pay the division: 10 % more time in this loop on one thread,
+// so the branch stays (docs/speed-accuracy.md).
 inline double viscosity_pair(double dw0, double h, double vr, double r2, double q, double alpha,
                              double beta, double c_mean, double rho_mean) {
   const double num = dw0 * h * vr * (beta * h * vr - alpha * c_mean * q);
@@ -238,6 +260,7 @@ double momentum_pairs(Simulation& sim, RowChunks& chunks, int c) {
     // Row i continues the sums its pairs with j < i began.
     double sx = sum[0][i], sy = sum[1][i], vsx = sum[2][i], vsy = sum[3][i];
     double hsx = kHourglass ? sum[4][i] : 0.0, hsy = kHourglass ? sum[5][i] : 0.0;
+    std::uint32_t approaching = 0;
     auto pairs = [&](std::uint32_t k0, std::uint32_t k1, double* const* to, std::size_t base) {
       for (std::uint32_t k = k0; k < k1; ++k) {
         const std::uint32_t j = jj[k];
@@ -255,6 +278,7 @@ double momentum_pairs(Simulation& sim, RowChunks& chunks, int c) {
         const double vr = dvx * dx + dvy * dy;
         const double pg = viscosity_pair(dw0[k], h, vr, r2, r2 + eta2, alpha, beta,
                                          0.5 * (csi + cs[j]), 0.5 * (rhoi + rho[j]));
+        approaching += vr < 0.0 ? 1 : 0;
         const double mj = mass[j];
         vsx -= mj * pg * dx;
         vsy -= mj * pg * dy;
@@ -291,6 +315,7 @@ double momentum_pairs(Simulation& sim, RowChunks& chunks, int c) {
       sum[4][i] = hsx;
       sum[5][i] = hsy;
     }
+    rp.approaching[i] = approaching;
   }
   return dissipated;
 }
@@ -321,7 +346,7 @@ void accelerations_per_particle(Simulation& sim, RowChunks& chunks, int c) {
 
 template <bool kHourglass>
 void momentum(Simulation& sim, double dt) {
-  RowChunks& chunks = planned_chunks(sim);
+  RowChunks& chunks = planned_chunks(sim, sim.step);
   double dissipated = 0.0;
 #pragma omp parallel num_threads(chunks.chunks()) reduction(+ : dissipated)
   {
@@ -335,7 +360,7 @@ void momentum(Simulation& sim, double dt) {
 // Stress and momentum in one parallel region: three barriers a step.
 template <bool kHourglass>
 void stress_and_momentum(Simulation& sim, double dt) {
-  RowChunks& chunks = planned_chunks(sim);
+  RowChunks& chunks = planned_chunks(sim, sim.step);
   double dissipated = 0.0;
 #pragma omp parallel num_threads(chunks.chunks()) reduction(+ : dissipated)
   {
@@ -365,7 +390,7 @@ bool hourglass_ready(const Simulation& sim) {
 }  // namespace
 
 void total_lagrangian_stress(Simulation& sim) {
-  RowChunks& chunks = planned_chunks(sim);
+  RowChunks& chunks = planned_chunks(sim, sim.step);
 #pragma omp parallel num_threads(chunks.chunks())
   {
     for_my_chunks(chunks, [&](int c) { displacements(sim, chunks, c); });
@@ -400,7 +425,7 @@ void gather_largest_j2(Simulation& sim) {
 
 TotalLagrangianPasses total_lagrangian_passes(Simulation& sim) {
   const bool hourglass = hourglass_ready(sim);
-  return {planned_chunks(sim), hourglass};
+  return {planned_chunks(sim, sim.step + 1), hourglass};  // before the clock advances
 }
 
 void deformation_sums(Simulation& sim, TotalLagrangianPasses& tl, int c) {

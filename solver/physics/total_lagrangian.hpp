@@ -43,6 +43,12 @@ struct ReferencePairs {
   // (the pair-once sums end in the same order as full rows would).
   std::vector<double> visc_ax, visc_ay, hg_ax, hg_ay;
   RowChunks chunks;
+  // Per row: its pairs whose viscosity acted (v_ij . x_ij < 0) in the last
+  // momentum pass, which cost that pass about twice a separating pair; the
+  // chunks are cut again from them every few thousand steps, at the step
+  // planned_step.
+  std::vector<std::uint32_t> approaching;
+  long planned_step = -1;
   // Per chunk: the largest J2 of its rows and where (stress pass), gathered
   // into Simulation::largest_j2.
   std::vector<double> chunk_j2;

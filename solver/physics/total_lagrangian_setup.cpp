@@ -40,6 +40,7 @@ void total_lagrangian_setup(Simulation& sim) {
     for (auto* v : {&rp.px, &rp.py, &rp.pyx, &rp.pyy, &rp.ux, &rp.uy, &rp.visc_ax, &rp.visc_ay}) {
       v->assign(n, 0.0);
     }
+    rp.approaching.assign(n, 0);
     rp.hg_ax.assign(keep_w ? n : 0, 0.0);
     rp.hg_ay.assign(keep_w ? n : 0, 0.0);
     rp.vol0.resize(n);
