@@ -19,7 +19,7 @@ void RowChunks::plan(const std::vector<std::uint32_t>& rows, const std::vector<s
   first_.assign(t_count + 1, n);
   first_[0] = 0;
   std::size_t i = 0;
-  double before = 0.0;  // cost of rows 0 .. i
+  double before = 0.0;  // cost of the rows before row i
   for (int c = 1; c < t_count; ++c) {
     const double target = total * c / t_count;
     while (i < n && before < target) before += cost(i++);
