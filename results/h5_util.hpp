@@ -111,8 +111,8 @@ inline constexpr unsigned kDeflateLevel =
 // Whole (fixed-size) datasets.
 void write_dataset(hid_t parent, const std::string& name, hid_t mem_type, const void* data,
                    const std::vector<hsize_t>& dims, bool compress);
-template <class T>
-void write_dataset(hid_t parent, const std::string& name, const std::vector<T>& data,
+template <class T, class Allocator>
+void write_dataset(hid_t parent, const std::string& name, const std::vector<T, Allocator>& data,
                    const std::vector<hsize_t>& dims, bool compress = false) {
   write_dataset(parent, name, native_type<T>(), data.data(), dims, compress);
 }

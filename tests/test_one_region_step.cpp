@@ -48,7 +48,7 @@ Simulation run(int threads, Step&& step) {
 }
 
 // Largest difference over the particles, relative to the largest value.
-double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
+double relative_difference(const Column<double>& a, const Column<double>& b) {
   double diff = 0.0, scale = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) {
     diff = std::max(diff, std::abs(a[i] - b[i]));
@@ -59,7 +59,7 @@ double relative_difference(const std::vector<double>& a, const std::vector<doubl
 
 struct Field {
   const char* name;
-  std::vector<double> Particles::*values;
+  Column<double> Particles::*values;
 };
 const Field kFields[] = {{"x", &Particles::x},           {"vx", &Particles::vx},
                          {"vy", &Particles::vy},         {"sxx", &Particles::sxx},

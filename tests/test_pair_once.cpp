@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <random>
 #include <vector>
 
@@ -43,7 +44,7 @@ void forces(Simulation& sim) {
   physics::total_lagrangian_momentum(sim, 1e-9);
 }
 
-double max_abs(const std::vector<double>& v) {
+double max_abs(const Column<double>& v) {
   double m = 0.0;
   for (double x : v) m = std::max(m, std::abs(x));
   return m;
@@ -157,6 +158,41 @@ TEST(PairOnce, AnyThreadCountGivesTheSameForcesToRoundOff) {
 // falls after row 3. With an extra of 4 on the last four rows at weight 0.5
 // (costs 4, 4, 4, 4, 6, 6, 6, 6; 40 in all) the first chunk takes rows until
 // it holds at least half: 4 + 4 + 4 + 4 + 6 = 22, so through row 4.
+// Every array a thread writes by rows starts on a cache line and owns whole
+// lines (cache_aligned.hpp): no other array, and no small object written by
+// another thread, shares its first or last line.
+TEST(PairOnce, ArraysWrittenByRowsOwnWholeCacheLines) {
+  Simulation sim = deformed_block(21, 2, 0.5);  // 441 doubles: 55 lines and one more
+
+  forces(sim);
+  const Particles& p = sim.particles;
+  const ReferencePairs& rp = sim.reference;
+  const Column<double>* arrays[] = {
+      &p.x,        &p.y,        &p.vx,     &p.vy,     &p.ax,   &p.ay,   &p.rho, &p.p,
+      &p.sxx,      &p.syy,      &p.sxy,    &p.szz,    &p.fxx,  &p.fxy,  &p.fyx, &p.fyy,
+      &p.ext_ax,   &p.ext_ay,   &rp.px,    &rp.py,    &rp.pyx, &rp.pyy, &rp.ux, &rp.uy,
+      &rp.visc_ax, &rp.visc_ay, &rp.hg_ax, &rp.hg_ay, &rp.gix, &rp.dw0};
+  std::vector<std::pair<std::uintptr_t, std::uintptr_t>> lines;
+  for (const Column<double>* a : arrays) {
+    ASSERT_FALSE(a->empty());
+    const auto first = reinterpret_cast<std::uintptr_t>(a->data());
+    EXPECT_EQ(first % kCacheLine, 0u);
+    lines.emplace_back(first / kCacheLine, (first + a->size() * sizeof(double) - 1) / kCacheLine);
+  }
+  std::sort(lines.begin(), lines.end());
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    EXPECT_GT(lines[k].first, lines[k - 1].second) << "two arrays share a cache line";
+  }
+  EXPECT_EQ(CacheAligned<double>::bytes(1), kCacheLine);
+  EXPECT_EQ(CacheAligned<double>::bytes(8), kCacheLine);
+  EXPECT_EQ(CacheAligned<double>::bytes(9), 2 * kCacheLine);
+  // Each chunk's largest J2 is written by its own thread every step.
+  ASSERT_EQ(rp.chunk_peaks.size(), 2u);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(&rp.chunk_peaks[1]) -
+                reinterpret_cast<std::uintptr_t>(&rp.chunk_peaks[0]),
+            kCacheLine);
+}
+
 TEST(PairOnce, ChunksAreCutAtEqualCost) {
   std::vector<std::uint32_t> rows = {0}, j;
   const std::uint32_t n = 8;

@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "solver/core/cache_aligned.hpp"
+
 namespace gearsph {
 
 struct Particles {
@@ -19,41 +21,41 @@ struct Particles {
   std::vector<std::uint16_t> motion;  // index into Scene::motions (0 = free)
 
   // Reference configuration (initial positions; TL reference).
-  std::vector<double> x0, y0;
-  std::vector<double> mass;  // [kg/m]
-  std::vector<double> rho0;  // [kg/m^3]
-  std::vector<double> cs;    // signal (P-wave) speed of the material [m/s]
+  Column<double> x0, y0;
+  Column<double> mass;  // [kg/m]
+  Column<double> rho0;  // [kg/m^3]
+  Column<double> cs;    // signal (P-wave) speed of the material [m/s]
 
   // State.
-  std::vector<double> x, y;                // position [m]
-  std::vector<double> vx, vy;              // velocity [m/s]
-  std::vector<double> rho;                 // density [kg/m^3]
-  std::vector<double> p;                   // pressure [Pa], positive in compression
-  std::vector<double> sxx, syy, sxy, szz;  // deviatoric stress [Pa]
+  Column<double> x, y;                // position [m]
+  Column<double> vx, vy;              // velocity [m/s]
+  Column<double> rho;                 // density [kg/m^3]
+  Column<double> p;                   // pressure [Pa], positive in compression
+  Column<double> sxx, syy, sxy, szz;  // deviatoric stress [Pa]
 
   // Rates and per-step work arrays.
-  std::vector<double> ax, ay;              // acceleration [m/s^2]
-  std::vector<double> drho;                // density rate [kg/m^3/s]
-  std::vector<double> lxx, lxy, lyx, lyy;  // velocity gradient L = grad v [1/s]
+  Column<double> ax, ay;              // acceleration [m/s^2]
+  Column<double> drho;                // density rate [kg/m^3/s]
+  Column<double> lxx, lxy, lyx, lyy;  // velocity gradient L = grad v [1/s]
   // Gradient correction C = [b | bq] (physics/kernel_correction.hpp):
   // linear block b (2x2) and quadratic block bq (2x3, rows x and y).
-  std::vector<double> bxx, bxy, byx, byy;
-  std::vector<double> bqx0, bqx1, bqx2, bqy0, bqy1, bqy2;
+  Column<double> bxx, bxy, byx, byy;
+  Column<double> bqx0, bqx1, bqx2, bqy0, bqy1, bqy2;
   std::vector<std::uint8_t> correction_order;  // GradientCorrection actually used
-  std::vector<double> fxx, fxy, fyx, fyy;      // deformation gradient (total Lagrangian)
-  std::vector<double> rxx, ryy, rxy;           // artificial stress R_i / rho^2 (Monaghan 2000)
+  Column<double> fxx, fxy, fyx, fyy;           // deformation gradient (total Lagrangian)
+  Column<double> rxx, ryy, rxy;                // artificial stress R_i / rho^2 (Monaghan 2000)
   // (sigma_i / rho_i^2) C_i, cached for the momentum loop: linear and quadratic blocks.
-  std::vector<double> qxx, qxy, qyx, qyy;
-  std::vector<double> qqx0, qqx1, qqx2, qqy0, qqy1, qqy2;
-  std::vector<double> ext_ax, ext_ay;          // external (contact, load) accel. this step
-  std::vector<double> load_ax, load_ay;        // applied loads, as accelerations (times the ramp)
-  std::vector<double> contact_ax, contact_ay;  // contact part of ext_ax/ext_ay, last step
+  Column<double> qxx, qxy, qyx, qyy;
+  Column<double> qqx0, qqx1, qqx2, qqy0, qqy1, qqy2;
+  Column<double> ext_ax, ext_ay;          // external (contact, load) accel. this step
+  Column<double> load_ax, load_ay;        // applied loads, as accelerations (times the ramp)
+  Column<double> contact_ax, contact_ay;  // contact part of ext_ax/ext_ay, last step
   // Surface of the body, for contact (scene/surfaces.hpp): outward normal in
   // the reference configuration and depth of the particle below the surface;
   // depth = +inf for interior particles. rot: current rotation angle of the
   // material around the particle (CCW), which turns the normal (updated
   // Lagrangian; the total-Lagrangian stress pass turns it by F's rotation).
-  std::vector<double> surf_nx, surf_ny, surf_depth, rot;
+  Column<double> surf_nx, surf_ny, surf_depth, rot;
 
   void resize(std::size_t count);
   // Frees the arrays only the updated-Lagrangian step uses (density rate,

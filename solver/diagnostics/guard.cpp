@@ -12,7 +12,7 @@ namespace {
 
 struct Quantity {
   const char* name;
-  const std::vector<double>* values;
+  const Column<double>* values;
 };
 
 [[noreturn]] void fail(const Simulation& sim, std::size_t i, const std::string& quantity,

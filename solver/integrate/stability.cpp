@@ -80,7 +80,7 @@ StabilityLimit estimate_stability_limit(const Simulation& original) {
   physics::total_lagrangian_setup(sim);
   physics::total_lagrangian_stress(sim);
   physics::total_lagrangian_momentum(sim, 0.0);
-  const std::vector<double> ax0 = p.ax, ay0 = p.ay;
+  const Column<double> ax0 = p.ax, ay0 = p.ay;
   const double eps = 1e-6 * sim.discretization.dx;
 
   StabilityLimit out;

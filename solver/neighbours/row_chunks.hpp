@@ -21,6 +21,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "solver/core/cache_aligned.hpp"
+
 namespace gearsph {
 
 class RowChunks {
@@ -55,7 +57,7 @@ class RowChunks {
   std::vector<std::uint32_t> cross_;   // per row
   std::vector<std::size_t> reach_;     // per chunk: one past the highest j it spills to
   std::vector<std::size_t> spill_at_;  // per chunk: offset of its window
-  std::vector<double> spill_;
+  Column<double> spill_;               // written by one thread, added by another
   int components_ = 0;
 };
 

@@ -45,7 +45,7 @@ struct ContactState {
   // Scratch of the surface model: each surface particle's outward normal
   // turned by its material rotation, computed once per step rather than per
   // pair (it was a sine and a cosine per pair end).
-  std::vector<double> normal_x, normal_y;
+  Column<double> normal_x, normal_y;
 };
 
 namespace physics {

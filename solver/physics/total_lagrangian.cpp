@@ -43,8 +43,7 @@ RowChunks& planned_chunks(Simulation& sim, long step) {
     rp.chunks.plan(rp.rows, rp.j, threads, kSpillComponents,
                    counted ? rp.approaching.data() : nullptr, kApproachingPairCost);
     rp.planned_step = step;
-    rp.chunk_j2.assign(threads, 0.0);
-    rp.chunk_peak.assign(threads, -1);
+    rp.chunk_peaks.assign(threads, {});
   }
   return rp.chunks;
 }
@@ -186,8 +185,7 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
       peak = static_cast<long>(i);
     }
   }
-  rp.chunk_j2[c] = j2_max;
-  rp.chunk_peak[c] = peak;
+  rp.chunk_peaks[c] = {j2_max, peak};
 }
 
 // Monaghan's viscosity of one pair (artificial_viscosity.hpp) over one
@@ -413,10 +411,10 @@ void total_lagrangian_momentum(Simulation& sim, double dt) {
 void gather_largest_j2(Simulation& sim) {
   const ReferencePairs& rp = sim.reference;
   LargestJ2 largest;
-  for (std::size_t c = 0; c < rp.chunk_j2.size(); ++c) {  // in row order
-    if (rp.chunk_j2[c] > largest.j2) {
-      largest.j2 = rp.chunk_j2[c];
-      largest.particle = rp.chunk_peak[c];
+  for (const ReferencePairs::ChunkPeak& c : rp.chunk_peaks) {  // in row order
+    if (c.j2 > largest.j2) {
+      largest.j2 = c.j2;
+      largest.particle = c.particle;
     }
   }
   largest.step = sim.step;

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "solver/core/cache_aligned.hpp"
 #include "solver/neighbours/row_chunks.hpp"
 
 namespace gearsph {
@@ -27,32 +28,36 @@ struct ReferencePairs {
   // Corrected gradients of the pair, G_ij = C_i grad0_i W_ij and
   // G_ji = C_j grad0_j W_ji (kernel_correction.hpp); the loops scale them by
   // the other end's reference volume.
-  std::vector<double> gix, giy;  // G_ij
-  std::vector<double> gjx, gjy;  // G_ji
-  std::vector<double> w0;        // W(|X_ij|), kept only with hourglass control
-  std::vector<double> dw0;       // dW/dr at |X_ij|
-  std::vector<double> px, py;    // P (first Piola-Kirchhoff), cached per particle:
-  std::vector<double> pyx, pyy;  // P = [[px, py], [pyx, pyy]]
-  std::vector<double> vol0;      // reference volume m/rho0, per particle
-  std::vector<double> ux, uy;    // displacement x - X, per particle, refreshed each step
+  Column<double> gix, giy;  // G_ij
+  Column<double> gjx, gjy;  // G_ji
+  Column<double> w0;        // W(|X_ij|), kept only with hourglass control
+  Column<double> dw0;       // dW/dr at |X_ij|
+  Column<double> px, py;    // P (first Piola-Kirchhoff), cached per particle:
+  Column<double> pyx, pyy;  // P = [[px, py], [pyx, pyy]]
+  Column<double> vol0;      // reference volume m/rho0, per particle
+  Column<double> ux, uy;    // displacement x - X, per particle, refreshed each step
   // sum_j V0_j G_ij over all neighbours, per particle: P_i is constant over
   // i's pairs, so its share of the momentum sum is P_i times this, with no
   // per-pair work.
-  std::vector<double> sgx, sgy;
+  Column<double> sgx, sgy;
   // Viscous and hourglass accelerations, summed apart from the stress share
   // (the pair-once sums end in the same order as full rows would).
-  std::vector<double> visc_ax, visc_ay, hg_ax, hg_ay;
+  Column<double> visc_ax, visc_ay, hg_ax, hg_ay;
   RowChunks chunks;
   // Per row: its pairs whose viscosity acted (v_ij . x_ij < 0) in the last
   // momentum pass, which cost that pass about twice a separating pair; the
   // chunks are cut again from them every few thousand steps, at the step
   // planned_step.
-  std::vector<std::uint32_t> approaching;
+  Column<std::uint32_t> approaching;
   long planned_step = -1;
   // Per chunk: the largest J2 of its rows and where (stress pass), gathered
-  // into Simulation::largest_j2.
-  std::vector<double> chunk_j2;
-  std::vector<long> chunk_peak;
+  // into Simulation::largest_j2; a cache line each, as each thread writes
+  // its own every step.
+  struct alignas(kCacheLine) ChunkPeak {
+    double j2 = 0.0;
+    long particle = -1;
+  };
+  std::vector<ChunkPeak> chunk_peaks;
   // Lame constants per body, so that the step divides nothing per particle.
   std::vector<double> lambda_body, mu_body;
   bool built() const { return !rows.empty(); }

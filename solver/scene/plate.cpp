@@ -96,7 +96,7 @@ Scene build_plate(const SceneInput& in) {
     }
     if (d < best + 0.25 * dx) tip.push_back(i);
   }
-  auto mean_of = [tip](const std::vector<double>& v) {
+  auto mean_of = [tip](const Column<double>& v) {
     double sum = 0;
     for (std::size_t i : tip) sum += v[i];
     return sum / static_cast<double>(tip.size());

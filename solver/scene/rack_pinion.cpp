@@ -108,7 +108,7 @@ void add_gear_histories(Scene& scene, const GearLayout& L, const std::vector<int
   const Particles& p = scene.sim.particles;
   const double b = L.face_width_m, r = L.pitch_radius;
   const std::size_t rb0 = scene.sim.bodies[1].begin, rb1 = scene.sim.bodies[1].end;
-  auto rack_mean = [rb0, rb1](const std::vector<double>& v) {
+  auto rack_mean = [rb0, rb1](const Column<double>& v) {
     double sum = 0;
     for (std::size_t i = rb0; i < rb1; ++i) sum += v[i];
     return sum / static_cast<double>(rb1 - rb0);
