@@ -204,16 +204,27 @@ TEST(PairOnce, ChunksAreCutAtEqualCost) {
   chunks.plan(rows, j, 2, 1);
   EXPECT_EQ(chunks.end(0), 4u);
   const std::vector<std::uint32_t> extra = {0, 0, 0, 0, 4, 4, 4, 4};
-  chunks.plan(rows, j, 2, 1, extra.data(), 0.5);
+  chunks.plan(rows, j, 2, 1, {1.0, extra.data(), 0.5});
   EXPECT_EQ(chunks.end(0), 5u);
-  chunks.plan(rows, j, 2, 1, extra.data(), 0.0);
+  chunks.plan(rows, j, 2, 1, {1.0, extra.data(), 0.0});
+  EXPECT_EQ(chunks.end(0), 4u);
+  // Rows 0-3 with 3 pairs, rows 4-7 with 1: per-row work moves the cut.
+  std::vector<std::uint32_t> uneven_rows = {0}, uneven_j;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    for (std::uint32_t k = 1; k <= (i < 4 ? 3u : 1u); ++k) uneven_j.push_back(i + k);
+    uneven_rows.push_back(static_cast<std::uint32_t>(uneven_j.size()));
+  }
+  chunks.plan(uneven_rows, uneven_j, 2, 1, {1.0});  // rows cost 4 4 4 4 2 2 2 2
+  EXPECT_EQ(chunks.end(0), 3u);
+  chunks.plan(uneven_rows, uneven_j, 2, 1, {5.0});  // 8 8 8 8 6 6 6 6
   EXPECT_EQ(chunks.end(0), 4u);
 }
 
-// Every 1024 steps the chunks are cut again from the pairs the last
+// Every 1024 steps the momentum cut is made again from the pairs the last
 // momentum pass counted as approaching. A block whose upper half is
 // squeezed (its pairs approach) and whose lower half stands still: the cut
-// moves, it is the cut those counts give, and two runs repeat bit for bit.
+// moves, it is the cut those counts give (with total_lagrangian.cpp's
+// costs), the deformation cut stays, and two runs repeat bit for bit.
 TEST(PairOnce, ChunksFollowTheApproachingPairsAndRunsRepeatBitForBit) {
   auto squeezed = [] {
     Simulation sim = deformed_block(20, 2, 0.0);
@@ -229,14 +240,16 @@ TEST(PairOnce, ChunksFollowTheApproachingPairsAndRunsRepeatBitForBit) {
     return sim;
   };
   Simulation a = squeezed();
-  const std::size_t by_pairs = a.reference.chunks.end(0);
+  const std::size_t by_pairs = a.reference.momentum_chunks.end(0);
+  const std::size_t deformation_cut = a.reference.deformation_chunks.end(0);
   for (int s = 0; s < 1023; ++s) integrate::step(a);
   RowChunks expected;
-  expected.plan(a.reference.rows, a.reference.j, 2, 6, a.reference.approaching.data(), 0.64);
+  expected.plan(a.reference.rows, a.reference.j, 2, 6, {3.0, a.reference.approaching.data(), 1.0});
   integrate::step(a);  // step 1024 cuts again before its passes
   ASSERT_EQ(a.reference.planned_step, 1024);
-  EXPECT_EQ(a.reference.chunks.end(0), expected.end(0));
-  EXPECT_NE(a.reference.chunks.end(0), by_pairs) << "the counts did not move the cut";
+  EXPECT_EQ(a.reference.momentum_chunks.end(0), expected.end(0));
+  EXPECT_NE(a.reference.momentum_chunks.end(0), by_pairs) << "the counts did not move the cut";
+  EXPECT_EQ(a.reference.deformation_chunks.end(0), deformation_cut);
   Simulation b = squeezed();
   for (int s = 0; s < 1024; ++s) integrate::step(b);
   for (std::size_t i = 0; i < a.particles.n; ++i) {

@@ -111,7 +111,9 @@ struct RegionStep {
 
 RegionStep total_lagrangian_step(Simulation& sim, double dt) {
   physics::TotalLagrangianPasses tl = physics::total_lagrangian_passes(sim);
-  const RowChunks& chunks = tl.chunks;
+  // Kicks, drift, momentum and accelerations by the momentum cut, F and
+  // stress by the deformation cut (ReferencePairs).
+  const RowChunks& chunks = tl.momentum;
   const bool contact = penalty_contact(sim);
   const double damping = sim.damping_1_s;
   place_rotations(sim, dt);
@@ -149,10 +151,10 @@ RegionStep total_lagrangian_step(Simulation& sim, double dt) {
     }
     if (drift.outside == 0 && !failed) {
       // F - I from the displacements.
-      for_my_chunks(chunks, [&](int c) { physics::deformation_sums(sim, tl, c); });
+      for_my_chunks(tl.deformation, [&](int c) { physics::deformation_sums(sim, tl, c); });
 #pragma omp barrier
       // F, P, sigma, rho; contact normals turned.
-      for_my_chunks(chunks, [&](int c) { physics::stress_from_deformation(sim, tl, c); });
+      for_my_chunks(tl.deformation, [&](int c) { physics::stress_from_deformation(sim, tl, c); });
 #pragma omp barrier
       // Contact (its own static split) and the momentum pair sums.
       if (contact) physics::contact_pairs(sim, dt, touched);

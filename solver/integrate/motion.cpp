@@ -151,9 +151,10 @@ Drift kick_drift(Simulation& sim, double dt) {
   }
   place_rotations(sim, dt);
   const std::size_t n = sim.particles.n;
-  // Total-Lagrangian runs move the rows each thread owns in the force passes
-  // (RowChunks): what a thread writes in the step stays in its own cache.
-  const RowChunks& chunks = sim.reference.chunks;
+  // Total-Lagrangian runs move the rows each thread owns in the momentum
+  // pass and the accelerations (RowChunks): what a thread writes in the step
+  // stays in its own cache.
+  const RowChunks& chunks = sim.reference.momentum_chunks;
   const bool by_chunks = chunks.chunks() == std::max(1, sim.threads);
   std::size_t outside = 0, contacts_moved = 0;
 #pragma omp parallel num_threads(sim.threads) reduction(+ : outside, contacts_moved)

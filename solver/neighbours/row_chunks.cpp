@@ -5,14 +5,14 @@
 namespace gearsph {
 
 void RowChunks::plan(const std::vector<std::uint32_t>& rows, const std::vector<std::uint32_t>& j,
-                     int threads, int components, const std::uint32_t* extra, double extra_weight) {
+                     int threads, int components, RowCost row_cost) {
   const std::size_t n = rows.empty() ? 0 : rows.size() - 1;
   const int t_count = std::max(1, threads);
   components_ = components;
-  // Equal shares of the cost: pairs plus rows (each row also has
-  // per-particle work), plus the weighted extra.
+  // Equal shares of the cost: pairs, per-particle work, the weighted extra.
   auto cost = [&](std::size_t r) {
-    return double(rows[r + 1] - rows[r]) + 1.0 + (extra ? extra_weight * extra[r] : 0.0);
+    return double(rows[r + 1] - rows[r]) + row_cost.per_row +
+           (row_cost.extra ? row_cost.per_extra * row_cost.extra[r] : 0.0);
   };
   double total = 0.0;
   for (std::size_t r = 0; r < n; ++r) total += cost(r);

@@ -25,16 +25,23 @@
 
 namespace gearsph {
 
+// What a row costs, in units of one pair of the pass: its pairs, plus
+// `per_row` for the per-particle work of the passes the cut also serves,
+// plus `per_extra` times extra[row] when `extra` is given (per-row work that
+// varies, such as the pairs whose viscosity acts).
+struct RowCost {
+  double per_row = 1.0;
+  const std::uint32_t* extra = nullptr;
+  double per_extra = 0.0;
+};
+
 class RowChunks {
  public:
   // Cuts rows[0..n] into `threads` chunks of about equal cost and sizes the
   // spill windows for `components` values per row (the most any loop writes
-  // per pair end). A row costs its pairs plus one, plus `extra_weight`
-  // times extra[row] when `extra` is given (per-row work that varies, such
-  // as the pairs whose viscosity acts).
+  // per pair end).
   void plan(const std::vector<std::uint32_t>& rows, const std::vector<std::uint32_t>& j,
-            int threads, int components, const std::uint32_t* extra = nullptr,
-            double extra_weight = 0.0);
+            int threads, int components, RowCost cost = {});
   int chunks() const { return static_cast<int>(first_.size()) - 1; }
   bool planned_for(int threads, int components) const {
     return chunks() == threads && components_ == components;

@@ -14,38 +14,52 @@ namespace {
 
 // Values a pair writes to each end: F loop 4 (the sum M of F = I + M),
 // momentum loop 6 (stress share, viscosity, hourglass).
-constexpr int kSpillComponents = 6;
+constexpr int kDeformationSpill = 4;
+constexpr int kMomentumSpill = 6;
 
-// The threads' chunks of rows for the step `step` computes. They are cut at
-// the start by pairs, and again every kReplanSteps steps with each row's
-// approaching pairs (v_ij . x_ij < 0, counted by the last momentum pass)
-// weighted kApproachingPairCost more. In the meshing gear 52 % of the
-// pinion's pairs approach against 28-34 % of the rack's; cut by pairs
+// What a row costs besides its pairs, in pairs of its own pass: measured on
+// the paper's gear, one thread (docs/speed-accuracy.md, sixth round). A pair
+// costs the F pass 2.6 ns and a row the stress pass 10.6 ns; a pair costs
+// the momentum pass 4.9 ns, and as much again when it approaches (the
+// division, the square root, the branch's mispredictions), and a row the
+// accelerations, loads and kicks 14 ns.
+constexpr double kStressRowCost = 4.0;
+constexpr double kMomentumRowCost = 3.0;
+constexpr double kApproachingPairCost = 1.0;
+
+// The momentum cut is made at the start by pairs and rows, and again every
+// kReplanSteps steps with each row's approaching pairs (v_ij . x_ij < 0,
+// counted by the last momentum pass) weighted. In the meshing gear 52 % of
+// the pinion's pairs approach against 28-34 % of the rack's; cut by pairs
 // alone, the thread holding the pinion took 14-20 % longer over the
 // momentum pass (docs/speed-accuracy.md, fifth round). The counts are a
-// function of the state, not of timing, so a run repeats bit for bit; a
-// new cut changes which sums spill, so the round-off.
+// function of the state, not of timing, so a run repeats bit for bit; a new
+// cut changes which sums spill, so the round-off. The deformation cut never
+// changes: the reference pairs do not.
 constexpr long kReplanSteps = 1024;
-// Fitted to the paper's gear on this machine (4 chunks, one thread): a pair
-// costs the F pass 3.5 ns and the momentum pass 5.7 ns, and 5.9 ns more
-// when it approaches (the division, the square root, the branch's
-// mispredictions). Weighting F and momentum together, 5.9 / 9.2 = 0.64:
-// their sum is then even between the threads (4.84 s against 4.89 s).
-constexpr double kApproachingPairCost = 0.64;
 
-RowChunks& planned_chunks(Simulation& sim, long step) {
+struct Cuts {
+  RowChunks& deformation;
+  RowChunks& momentum;
+};
+
+Cuts planned_chunks(Simulation& sim, long step) {
   ReferencePairs& rp = sim.reference;
   const int threads = std::max(1, sim.threads);
-  const bool first = !rp.chunks.planned_for(threads, kSpillComponents);
+  if (!rp.deformation_chunks.planned_for(threads, kDeformationSpill)) {
+    rp.deformation_chunks.plan(rp.rows, rp.j, threads, kDeformationSpill, {kStressRowCost});
+    rp.chunk_peaks.assign(threads, {});
+  }
+  const bool first = !rp.momentum_chunks.planned_for(threads, kMomentumSpill);
   const bool due = threads > 1 && step % kReplanSteps == 0 && step != rp.planned_step;
   if (first || due) {
     const bool counted = rp.approaching.size() + 1 == rp.rows.size();
-    rp.chunks.plan(rp.rows, rp.j, threads, kSpillComponents,
-                   counted ? rp.approaching.data() : nullptr, kApproachingPairCost);
+    rp.momentum_chunks.plan(
+        rp.rows, rp.j, threads, kMomentumSpill,
+        {kMomentumRowCost, counted ? rp.approaching.data() : nullptr, kApproachingPairCost});
     rp.planned_step = step;
-    rp.chunk_peaks.assign(threads, {});
   }
-  return rp.chunks;
+  return {rp.deformation_chunks, rp.momentum_chunks};
 }
 
 // F loop, pass 0 for chunk c: displacements u = x - X, so that the pair
@@ -344,13 +358,13 @@ void accelerations_per_particle(Simulation& sim, RowChunks& chunks, int c) {
 
 template <bool kHourglass>
 void momentum(Simulation& sim, double dt) {
-  RowChunks& chunks = planned_chunks(sim, sim.step);
+  RowChunks& rows = planned_chunks(sim, sim.step).momentum;
   double dissipated = 0.0;
-#pragma omp parallel num_threads(chunks.chunks()) reduction(+ : dissipated)
+#pragma omp parallel num_threads(rows.chunks()) reduction(+ : dissipated)
   {
-    for_my_chunks(chunks, [&](int c) { dissipated += momentum_pairs<kHourglass>(sim, chunks, c); });
+    for_my_chunks(rows, [&](int c) { dissipated += momentum_pairs<kHourglass>(sim, rows, c); });
 #pragma omp barrier
-    for_my_chunks(chunks, [&](int c) { accelerations_per_particle<kHourglass>(sim, chunks, c); });
+    for_my_chunks(rows, [&](int c) { accelerations_per_particle<kHourglass>(sim, rows, c); });
   }
   sim.energy.dissipated += dt * dissipated;
 }
@@ -358,19 +372,20 @@ void momentum(Simulation& sim, double dt) {
 // Stress and momentum in one parallel region: three barriers a step.
 template <bool kHourglass>
 void stress_and_momentum(Simulation& sim, double dt) {
-  RowChunks& chunks = planned_chunks(sim, sim.step);
+  const Cuts cut = planned_chunks(sim, sim.step);
+  RowChunks &f_rows = cut.deformation, &m_rows = cut.momentum;
   double dissipated = 0.0;
-#pragma omp parallel num_threads(chunks.chunks()) reduction(+ : dissipated)
+#pragma omp parallel num_threads(f_rows.chunks()) reduction(+ : dissipated)
   {
-    for_my_chunks(chunks, [&](int c) { displacements(sim, chunks, c); });
+    for_my_chunks(f_rows, [&](int c) { displacements(sim, f_rows, c); });
 #pragma omp barrier
-    for_my_chunks(chunks, [&](int c) { deformation_pairs(sim, chunks, c); });
+    for_my_chunks(f_rows, [&](int c) { deformation_pairs(sim, f_rows, c); });
 #pragma omp barrier
-    for_my_chunks(chunks, [&](int c) { stress_per_particle(sim, chunks, c); });
+    for_my_chunks(f_rows, [&](int c) { stress_per_particle(sim, f_rows, c); });
 #pragma omp barrier
-    for_my_chunks(chunks, [&](int c) { dissipated += momentum_pairs<kHourglass>(sim, chunks, c); });
+    for_my_chunks(m_rows, [&](int c) { dissipated += momentum_pairs<kHourglass>(sim, m_rows, c); });
 #pragma omp barrier
-    for_my_chunks(chunks, [&](int c) { accelerations_per_particle<kHourglass>(sim, chunks, c); });
+    for_my_chunks(m_rows, [&](int c) { accelerations_per_particle<kHourglass>(sim, m_rows, c); });
   }
   sim.energy.dissipated += dt * dissipated;
   gather_largest_j2(sim);
@@ -388,14 +403,14 @@ bool hourglass_ready(const Simulation& sim) {
 }  // namespace
 
 void total_lagrangian_stress(Simulation& sim) {
-  RowChunks& chunks = planned_chunks(sim, sim.step);
-#pragma omp parallel num_threads(chunks.chunks())
+  RowChunks& rows = planned_chunks(sim, sim.step).deformation;
+#pragma omp parallel num_threads(rows.chunks())
   {
-    for_my_chunks(chunks, [&](int c) { displacements(sim, chunks, c); });
+    for_my_chunks(rows, [&](int c) { displacements(sim, rows, c); });
 #pragma omp barrier
-    for_my_chunks(chunks, [&](int c) { deformation_pairs(sim, chunks, c); });
+    for_my_chunks(rows, [&](int c) { deformation_pairs(sim, rows, c); });
 #pragma omp barrier
-    for_my_chunks(chunks, [&](int c) { stress_per_particle(sim, chunks, c); });
+    for_my_chunks(rows, [&](int c) { stress_per_particle(sim, rows, c); });
   }
   gather_largest_j2(sim);
 }
@@ -423,27 +438,28 @@ void gather_largest_j2(Simulation& sim) {
 
 TotalLagrangianPasses total_lagrangian_passes(Simulation& sim) {
   const bool hourglass = hourglass_ready(sim);
-  return {planned_chunks(sim, sim.step + 1), hourglass};  // before the clock advances
+  const Cuts cut = planned_chunks(sim, sim.step + 1);  // before the clock advances
+  return {cut.deformation, cut.momentum, hourglass};
 }
 
 void deformation_sums(Simulation& sim, TotalLagrangianPasses& tl, int c) {
-  deformation_pairs(sim, tl.chunks, c);
+  deformation_pairs(sim, tl.deformation, c);
 }
 
 void stress_from_deformation(Simulation& sim, TotalLagrangianPasses& tl, int c) {
-  stress_per_particle(sim, tl.chunks, c);
+  stress_per_particle(sim, tl.deformation, c);
 }
 
 double momentum_sums(Simulation& sim, TotalLagrangianPasses& tl, int c) {
-  return tl.hourglass ? momentum_pairs<true>(sim, tl.chunks, c)
-                      : momentum_pairs<false>(sim, tl.chunks, c);
+  return tl.hourglass ? momentum_pairs<true>(sim, tl.momentum, c)
+                      : momentum_pairs<false>(sim, tl.momentum, c);
 }
 
 void accelerations(Simulation& sim, TotalLagrangianPasses& tl, int c) {
   if (tl.hourglass) {
-    accelerations_per_particle<true>(sim, tl.chunks, c);
+    accelerations_per_particle<true>(sim, tl.momentum, c);
   } else {
-    accelerations_per_particle<false>(sim, tl.chunks, c);
+    accelerations_per_particle<false>(sim, tl.momentum, c);
   }
 }
 

@@ -43,7 +43,12 @@ struct ReferencePairs {
   // Viscous and hourglass accelerations, summed apart from the stress share
   // (the pair-once sums end in the same order as full rows would).
   Column<double> visc_ax, visc_ay, hg_ax, hg_ay;
-  RowChunks chunks;
+  // The threads' rows, cut twice: the F pass's pairs cost the same
+  // everywhere, the momentum pass's do not (the viscosity's division acts on
+  // approaching pairs only). The deformation cut serves the F and stress
+  // passes, the momentum cut the momentum pass, the accelerations and the
+  // kicks and drift, so that each pair pass ends evenly at its barrier.
+  RowChunks deformation_chunks, momentum_chunks;
   // Per row: its pairs whose viscosity acted (v_ij . x_ij < 0) in the last
   // momentum pass, which cost that pass about twice a separating pair; the
   // chunks are cut again from them every few thousand steps, at the step
@@ -75,7 +80,8 @@ void total_lagrangian_setup(Simulation& sim);
 // reads what the one before it wrote on other threads' rows, so a barrier
 // separates them. Thread t runs chunks t, t + team, ...
 struct TotalLagrangianPasses {
-  RowChunks& chunks;
+  RowChunks& deformation;  // passes 1 and 2
+  RowChunks& momentum;     // passes 3 and 4, and the kicks and drift
   bool hourglass;
 };
 // Plans the chunks for sim.threads (once per run); call outside the region.

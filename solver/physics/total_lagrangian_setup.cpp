@@ -29,7 +29,9 @@ void total_lagrangian_setup(Simulation& sim) {
       list.build(p, kernel.radius, PairSelection::SameBody, /*reference=*/true, sim.threads);
       rp.rows = std::move(list.rows);
       rp.j = std::move(list.j);
-      rp.chunks = RowChunks();  // planned for these rows at the first pair loop
+      // Planned for these rows at the first pair loop.
+      rp.deformation_chunks = RowChunks();
+      rp.momentum_chunks = RowChunks();
     }
     const std::size_t n = p.n, m = rp.pairs();
     // W itself is needed only by hourglass control: without it a pair takes
