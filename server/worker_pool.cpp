@@ -196,8 +196,9 @@ void WorkerPool::run(const JobRecord& job) {
     // A fresh directory: nothing of an interrupted attempt is mistaken for a result.
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
-    // threads_per_job is this worker's share of the cores: a small scene
-    // takes fewer (threads_for), a job's own "threads" is kept.
+    // threads_per_job is this worker's share of the cores: a job's own
+    // "threads" is kept below it, else a trial of a few steps picks up to it
+    // (run/thread_trial.hpp).
     PreparedJob prepared =
         prepare_job(nlohmann::json::parse(job.job_json), 0, options_.threads_per_job);
     steps = prepared.steps;

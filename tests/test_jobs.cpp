@@ -41,19 +41,44 @@ const json kPlate = {{"scene", {{"type", "plate"}}}, {"time", {{"end_s", 0.001}}
 
 TEST(Jobs, ThreadsFollowTheSceneSizeUnlessSet) {
   // One thread per kParticlesPerThread, at least one, at most the cap.
-  EXPECT_EQ(threads_for(918, 2), 1);
+  EXPECT_EQ(threads_for(918, 2), 2);
+  EXPECT_EQ(threads_for(kParticlesPerThread - 1, 2), 1);
   EXPECT_EQ(threads_for(2 * kParticlesPerThread, 2), 2);
   EXPECT_EQ(threads_for(2 * kParticlesPerThread, 1), 1);
   EXPECT_EQ(threads_for(100 * kParticlesPerThread, 8), 8);
   EXPECT_EQ(threads_for(0, 0), 1);
-  // The paper's case (918 particles): one thread unless asked.
+  // The paper's case (918 particles, 1e6 steps): a trial of 1 and 2 threads
+  // unless the command line or the job says.
   const json gear = {{"scene", {{"type", "rack_pinion"}}}};
-  EXPECT_EQ(prepare_job(gear, 0, 2).scene.sim.threads, 1);
-  EXPECT_EQ(prepare_job(gear, 2).scene.sim.threads, 2);  // the command line's --threads
+  const PreparedJob paper = prepare_job(gear, 0, 2);
+  EXPECT_EQ(paper.threads_by, "trial");
+  EXPECT_EQ(paper.trial_threads, 2);
+  EXPECT_EQ(paper.scene.sim.threads, 1);                  // until the trial has run
+  EXPECT_EQ(prepare_job(gear, 0, 1).threads_by, "size");  // nothing to try
+  EXPECT_EQ(prepare_job(gear, 2).scene.sim.threads, 2);   // the command line's --threads
+  EXPECT_EQ(prepare_job(gear, 2).threads_by, "caller");
   json own = gear;
   own["threads"] = 2;
   EXPECT_EQ(prepare_job(own, 0, 4).scene.sim.threads, 2);
+  EXPECT_EQ(prepare_job(own, 0, 4).threads_by, "job");
   EXPECT_EQ(prepare_job(own, 0, 1).scene.sim.threads, 1);  // a server's share caps it
+  // A short run is not worth a trial: one thread.
+  json short_run = gear;
+  short_run["time"] = {{"end_s", 1e-5}};
+  const PreparedJob brief = prepare_job(short_run, 0, 2);
+  ASSERT_LT(double(brief.scene.sim.particles.n) * double(brief.steps), kTrialParticleSteps);
+  EXPECT_EQ(brief.threads_by, "size");
+  EXPECT_EQ(brief.scene.sim.threads, 1);
+}
+
+TEST(Jobs, ALargeSceneTakesThreadsBySizeWithoutATrial) {
+  const json plate = {{"scene", {{"type", "plate"}}},
+                      {"discretization", {{"spacing_m", 0.0003}}},
+                      {"time", {{"end_s", 1e-6}}}};
+  const PreparedJob job = prepare_job(plate, 0, 2);
+  ASSERT_GE(job.scene.sim.particles.n, kThreadsWithoutTrial);
+  EXPECT_EQ(job.threads_by, "size");
+  EXPECT_EQ(job.scene.sim.threads, 2);
 }
 
 TEST(Jobs, SchemaIsValidDraft07ForOurValidator) {

@@ -580,6 +580,31 @@ class CancelAfter : public RunObserver {
   std::int64_t step_, now_ = 0;
 };
 
+// Fails the run at its first sample after `step`, as a full disk would.
+class FailAfter : public RunObserver {
+ public:
+  explicit FailAfter(std::int64_t step) : step_(step) {}
+  void on_sample(const Simulation& sim, const History&) override {
+    if (sim.step >= step_) throw std::runtime_error("no space left on device");
+  }
+
+ private:
+  std::int64_t step_;
+};
+
+TEST(ResultsWriter, ARunThatFailsInAReusedDirectoryLeavesNoSummary) {
+  // summary.json says "these files are a whole run": a failed run must not
+  // leave the previous run's summary next to its own partial files.
+  register_outputs();
+  const fs::path dir = fresh_dir("reused");
+  ASSERT_EQ(execute_job(kPlateJob, dir, ExecuteOptions{1, nullptr}).run.status, "completed");
+  ASSERT_TRUE(fs::exists(dir / "summary.json"));
+  FailAfter fail(100);
+  EXPECT_THROW(execute_job(kPlateJob, dir, ExecuteOptions{1, &fail}), std::runtime_error);
+  EXPECT_FALSE(fs::exists(dir / "summary.json"));
+  fs::remove_all(dir);
+}
+
 TEST(ResultsWriter, RunThatEndsEarlyKeepsItsFramesAndSaysSo) {
   register_outputs();
   const fs::path dir = fresh_dir("cancelled");

@@ -26,7 +26,7 @@ TEST(TorqueDrive, BalancedTorqueCarriesTheLoadLikeAHeldHub) {
                         {"pinion", pinion},
                         {"rack", {{"velocity_m_s", 0.0}, {"load_N", load}}}}},
                       {"output", {{"frames", 0}}}};
-    PreparedJob prepared = prepare_job(job);
+    PreparedJob prepared = prepare_job(job, 1);  // one thread: the same sums every run
     RunResult r = run_job(prepared);
     EXPECT_EQ(r.status, "completed") << r.message;
     return r.summary.at("analysis").at("static_check");

@@ -1,6 +1,7 @@
 // gearsph run JOB.json --out DIR
 #include <cstdio>
 #include <filesystem>
+#include <string>
 
 #include "apps/gearsph/cli.hpp"
 #include "apps/gearsph/progress.hpp"
@@ -11,6 +12,36 @@
 #include "solver/run/execute.hpp"
 
 namespace gearsph::cli {
+
+namespace {
+
+std::string threads_text(const PreparedJob& job) {
+  char text[96];
+  const int n = job.threads_by == "trial" ? job.trial_threads : job.scene.sim.threads;
+  std::snprintf(text, sizeof text,
+                job.threads_by == "trial" ? "1 to %d threads (timing a few steps picks)"
+                : n == 1                  ? "%d thread"
+                                          : "%d threads",
+                n);
+  return text;
+}
+
+// " (trial: 1 thread 131 us a step, 2 threads 77 us)", or "".
+std::string trial_note(const nlohmann::json& summary) {
+  if (!summary.contains("thread_trial")) return "";
+  const nlohmann::json& t = summary.at("thread_trial");
+  std::string note = " (trial:";
+  for (std::size_t k = 0; k < t.at("threads").size(); ++k) {
+    char part[80];
+    const int n = t.at("threads")[k].get<int>();
+    std::snprintf(part, sizeof part, "%s %d thread%s %.0f us%s", k ? "," : "", n, n == 1 ? "" : "s",
+                  t.at("us_per_step")[k].get<double>(), k ? "" : " a step");
+    note += part;
+  }
+  return note + ")";
+}
+
+}  // namespace
 
 int cmd_schema(Args& args) {
   args.positional();
@@ -43,10 +74,10 @@ int cmd_run(Args& args) {
     std::fprintf(
         stderr,
         "gearsph run: %s: %s, %zu particles, %lld steps of %.4g s (%s; Courant %.3g, stable "
-        "limit %.3g), %d threads\n",
+        "limit %.3g), %s\n",
         job.job.at("name").get<std::string>().c_str(), job.scene.type.c_str(), sim.particles.n,
         static_cast<long long>(job.steps), sim.dt, job.time_step.chosen_by.c_str(),
-        job.time_step.courant, job.time_step.courant_limit, sim.threads);
+        job.time_step.courant, job.time_step.courant_limit, threads_text(job).c_str());
 #ifdef GEARSPH_WITH_RESULTS
     // Disk use, stated before the run: an upper bound (ResultsRun tests).
     std::fprintf(stderr, "gearsph run: %lld frames (output.frames): results.h5 at most %.3g MB\n",
@@ -60,8 +91,9 @@ int cmd_run(Args& args) {
   options.observer = &printer;
   const RunResult result = execute_prepared(job, *out, options).run;
   if (!quiet) {
-    std::fprintf(stderr, "gearsph run: %s in %.2f s; results in %s\n", result.status.c_str(),
-                 result.wall_s, out->c_str());
+    std::fprintf(stderr, "gearsph run: %s in %.2f s on %d thread%s%s; results in %s\n",
+                 result.status.c_str(), result.wall_s, sim.threads, sim.threads == 1 ? "" : "s",
+                 trial_note(result.summary).c_str(), out->c_str());
   }
   if (result.status == "diverged") {
     std::fprintf(stderr, "gearsph run: %s\n", result.message.c_str());

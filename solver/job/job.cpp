@@ -172,9 +172,8 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads, int max_threads)
   }
   const int job_threads = job.at("threads").get<int>();
   const int most = max_threads > 0 ? max_threads : omp_get_max_threads();
-  sim.threads = threads > 0       ? threads
-                : job_threads > 0 ? std::min(job_threads, most)
-                                  : threads_for(sim.particles.n, most);
+  sim.threads = threads > 0 ? threads : job_threads > 0 ? std::min(job_threads, most) : 1;
+  out.threads_by = threads > 0 ? "caller" : job_threads > 0 ? "job" : "size";
 
   const nlohmann::json& t = job.at("time");
   out.end_s = t.contains("end_s") ? t.at("end_s").get<double>() : out.scene.default_end_s;
@@ -215,7 +214,23 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads, int max_threads)
     out.snapshot_every = std::max<std::int64_t>(1, out.steps / frames);
     out.frames = 1 + out.steps / out.snapshot_every + (out.steps % out.snapshot_every ? 1 : 0);
   }
+  if (out.threads_by == "size") choose_threads(out, most);
   return out;
+}
+
+void choose_threads(PreparedJob& job, int max_threads) {
+  Simulation& sim = job.scene.sim;
+  const std::size_t n = sim.particles.n;
+  const int worth = threads_for(n, max_threads);
+  job.threads_by = "size";
+  job.trial_threads = 0;
+  sim.threads = 1;
+  if (n >= kThreadsWithoutTrial) {
+    sim.threads = worth;
+  } else if (worth > 1 && double(n) * double(job.steps) >= kTrialParticleSteps) {
+    job.threads_by = "trial";
+    job.trial_threads = worth;
+  }
 }
 
 }  // namespace gearsph

@@ -41,17 +41,34 @@ struct PreparedJob {
   std::int64_t history_every = 1;
   std::int64_t snapshot_every = 0;  // 0: no snapshots
   std::int64_t frames = 0;          // snapshots the run will write (with frame 0 and the last)
+  // Who chose scene.sim.threads: "caller" (--threads), "job" (its "threads"),
+  // "size" or "trial". For "trial", run_job times 1 to trial_threads threads
+  // on a copy of the scene and runs on the fastest (run/thread_trial.hpp).
+  std::string threads_by = "size";
+  int trial_threads = 0;
 };
 
 // Validates, builds the scene, chooses dt. `threads` > 0: exactly that many
-// OpenMP threads; else the job's "threads" or else threads_for() the
-// scene's size, either at most `max_threads` (<= 0: all cores).
+// OpenMP threads; else the job's "threads", at most `max_threads` (<= 0:
+// all cores); else choose_threads().
 PreparedJob prepare_job(const nlohmann::json& job, int threads = 0, int max_threads = 0);
 
 // Threads worth giving a scene of `particles`: one per kParticlesPerThread,
-// at least one, at most max_threads. Below that a time step is too short
-// for its ~10 thread barriers to pay off (docs/speed-accuracy.md, Threads).
-inline constexpr std::size_t kParticlesPerThread = 20000;
+// at least one, at most max_threads. On 2 cores two threads beat one from
+// ~100 particles up when the second core is free (docs/speed-accuracy.md,
+// Threads).
+inline constexpr std::size_t kParticlesPerThread = 100;
 int threads_for(std::size_t particles, int max_threads);
+
+// A scene this large takes threads_for() threads without a trial: its steps
+// are long against a thread's hand-over whatever else runs (1.99x at
+// 55,878 particles), and a trial would copy it.
+inline constexpr std::size_t kThreadsWithoutTrial = 40000;
+// A shorter run takes one thread: the trial's ~40 ms would be a large part
+// of it (~1.4 s at 1e7 particle-steps on one thread).
+inline constexpr double kTrialParticleSteps = 1e7;
+// Fills PreparedJob::threads_by, trial_threads and scene.sim.threads for a
+// job that names no thread count.
+void choose_threads(PreparedJob& job, int max_threads);
 
 }  // namespace gearsph

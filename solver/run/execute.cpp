@@ -47,6 +47,9 @@ Execution execute_job(const nlohmann::json& job, const std::filesystem::path& di
 Execution execute_prepared(PreparedJob& job, const std::filesystem::path& dir,
                            const ExecuteOptions& options) {
   std::filesystem::create_directories(dir);
+  // summary.json marks a complete run (it is written last): one left by an
+  // earlier run in this directory must not vouch for this run's files.
+  std::filesystem::remove(dir / "summary.json");
   Execution out;
   write_file_atomic(dir / "job.json", job.job.dump(2) + "\n");
   out.files.push_back("job.json");

@@ -8,6 +8,7 @@
 #include "solver/diagnostics/health.hpp"
 #include "solver/integrate/integrator.hpp"
 #include "solver/run/summary.hpp"
+#include "solver/run/thread_trial.hpp"
 
 namespace gearsph {
 
@@ -77,6 +78,11 @@ RunResult run_job(PreparedJob& job, RunObserver* observer) {
 
   const auto start = Clock::now();
   auto wall = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  ThreadTrial trial;
+  if (job.threads_by == "trial") {
+    trial = trial_threads(sim, job.trial_threads);
+    sim.threads = trial.chosen;
+  }
   if (observer) observer->on_start(job);
   auto last_progress = Clock::now();
 
@@ -131,6 +137,11 @@ RunResult run_job(PreparedJob& job, RunObserver* observer) {
     result.message = "completed with health warnings: " + health.events().front().message;
   }
   result.summary = make_summary(job, result, peak);
+  result.summary["threads_by"] = job.threads_by;
+  if (!trial.threads.empty()) {
+    result.summary["thread_trial"] = {{"threads", trial.threads},
+                                      {"us_per_step", trial.us_per_step}};
+  }
   result.summary["health"] = health.report();
   result.summary["warnings"] = health.warnings();
   if (observer) observer->on_finish(job, result);

@@ -1,0 +1,29 @@
+#pragma once
+// How many OpenMP threads a run gets when nobody said: time a few steps of a
+// copy of the scene at each count and keep the fastest. Two threads run the
+// paper's gear 1.6-1.7x faster than one on a free 2-core machine, and 2.5x
+// slower than one when another program holds the second core (every time
+// step waits ~10 times for the thread that is not running;
+// docs/speed-accuracy.md, Threads). Only a measurement tells the two apart.
+//
+// The trial steps a copy: the run itself starts from the untouched scene, so
+// its results are those of a run told the chosen count from the start.
+#include <vector>
+
+#include "solver/core/simulation.hpp"
+
+namespace gearsph {
+
+struct ThreadTrial {
+  std::vector<int> threads;         // the counts tried, ascending, from 1
+  std::vector<double> us_per_step;  // the best of the rounds at each count
+  int chosen = 1;
+};
+
+// Tries 1, 2, 4, ... and `most` threads (most >= 1). A count is kept only if
+// it beats every smaller one by kTrialMargin: a second core spent for a
+// smaller gain is not worth taking from the rest of the machine.
+inline constexpr double kTrialMargin = 0.05;
+ThreadTrial trial_threads(const Simulation& sim, int most);
+
+}  // namespace gearsph

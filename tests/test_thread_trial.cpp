@@ -1,0 +1,78 @@
+// The thread trial (solver/run/thread_trial.hpp): it times a copy, so a run
+// whose count it chose is the run that count gives when told from the start.
+// Which count wins depends on the machine's load and is not asserted.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "solver/job/job.hpp"
+#include "solver/run/runner.hpp"
+#include "solver/run/thread_trial.hpp"
+
+namespace gearsph {
+namespace {
+
+using nlohmann::json;
+
+// The plate, short: a few hundred steps of ~300 particles.
+const json kPlate = {{"scene", {{"type", "plate"}}},
+                     {"discretization", {{"spacing_m", 0.004}}},
+                     {"time", {{"end_s", 0.005}}},
+                     {"output", {{"frames", 0}, {"history_points", 20}}}};
+
+TEST(ThreadTrial, TimesEveryCountOnACopy) {
+  PreparedJob job = prepare_job(kPlate, 1);
+  const Simulation before = job.scene.sim;
+  const ThreadTrial t = trial_threads(job.scene.sim, 3);
+  ASSERT_EQ(t.threads, (std::vector<int>{1, 2, 3}));
+  ASSERT_EQ(t.us_per_step.size(), 3u);
+  for (const double us : t.us_per_step) {
+    EXPECT_TRUE(std::isfinite(us) && us > 0.0) << us;
+  }
+  EXPECT_NE(std::find(t.threads.begin(), t.threads.end(), t.chosen), t.threads.end());
+  // A count is chosen only for beating the smaller ones by the margin.
+  const auto chosen = std::find(t.threads.begin(), t.threads.end(), t.chosen) - t.threads.begin();
+  for (std::ptrdiff_t k = 0; k < chosen; ++k) {
+    EXPECT_LT(t.us_per_step[chosen], (1.0 - kTrialMargin) * t.us_per_step[k]);
+  }
+  // The scene itself has not moved.
+  const Simulation& after = job.scene.sim;
+  EXPECT_EQ(after.step, before.step);
+  EXPECT_EQ(after.time, before.time);
+  EXPECT_EQ(after.particles.x, before.particles.x);
+  EXPECT_EQ(after.particles.vy, before.particles.vy);
+  EXPECT_EQ(after.threads, before.threads);
+}
+
+TEST(ThreadTrial, OneThreadLeavesNothingToTry) {
+  PreparedJob job = prepare_job(kPlate, 1);
+  const ThreadTrial t = trial_threads(job.scene.sim, 1);
+  EXPECT_EQ(t.threads, std::vector<int>{1});
+  EXPECT_EQ(t.chosen, 1);
+}
+
+TEST(ThreadTrial, ARunAfterATrialIsTheRunOfTheChosenCount) {
+  PreparedJob tried = prepare_job(kPlate, 0, 2);
+  tried.threads_by = "trial";  // the plate is too short to be tried by default
+  tried.trial_threads = 2;
+  const RunResult a = run_job(tried);
+  ASSERT_EQ(a.status, "completed") << a.message;
+  ASSERT_TRUE(a.summary.contains("thread_trial"));
+  EXPECT_EQ(a.summary.at("threads_by"), "trial");
+  const int chosen = a.summary.at("threads").get<int>();
+
+  PreparedJob told = prepare_job(kPlate, chosen);
+  const RunResult b = run_job(told);
+  ASSERT_EQ(b.status, "completed") << b.message;
+  EXPECT_EQ(b.summary.at("threads_by"), "caller");
+  EXPECT_FALSE(b.summary.contains("thread_trial"));
+  // Bit for bit: the same particles, the same history.
+  EXPECT_EQ(tried.scene.sim.particles.x, told.scene.sim.particles.x);
+  EXPECT_EQ(tried.scene.sim.particles.vy, told.scene.sim.particles.vy);
+  EXPECT_EQ(a.history.to_csv(), b.history.to_csv());
+  EXPECT_EQ(a.summary.at("max_von_mises_Pa"), b.summary.at("max_von_mises_Pa"));
+}
+
+}  // namespace
+}  // namespace gearsph
