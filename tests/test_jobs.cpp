@@ -8,6 +8,7 @@
 
 #include "solver/job/job.hpp"
 #include "solver/job/json_schema.hpp"
+#include "solver/run/runner.hpp"
 
 namespace gearsph {
 namespace {
@@ -69,6 +70,23 @@ TEST(Jobs, ThreadsFollowTheSceneSizeUnlessSet) {
   ASSERT_LT(double(brief.scene.sim.particles.n) * double(brief.steps), kTrialParticleSteps);
   EXPECT_EQ(brief.threads_by, "size");
   EXPECT_EQ(brief.scene.sim.threads, 1);
+}
+
+TEST(Jobs, ARunRecordsAtMostTheSamplesAndFramesAskedFor) {
+  // 1.9 steps a point: sampling every step would give 1.9x the rows.
+  const std::int64_t steps = prepare_job(kPlate, 1).steps;
+  ASSERT_GE(steps, 40);
+  json job = kPlate;
+  const std::int64_t wanted = steps * 10 / 19;
+  job["output"] = {{"history_points", wanted}, {"frames", wanted}};
+  PreparedJob prepared = prepare_job(job, 1);
+  EXPECT_LE(prepared.frames, wanted + 1);  // with the initial state
+  EXPECT_GE(prepared.frames, wanted / 2);
+  const RunResult r = run_job(prepared);
+  ASSERT_EQ(r.status, "completed") << r.message;
+  EXPECT_LE(r.history.rows(), static_cast<std::size_t>(wanted + 1));
+  EXPECT_GE(r.history.rows(), static_cast<std::size_t>(wanted / 2));
+  EXPECT_EQ(r.history.column("time_s").back(), prepared.scene.sim.time);  // the last step
 }
 
 TEST(Jobs, ALargeSceneTakesThreadsBySizeWithoutATrial) {

@@ -208,10 +208,16 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads, int max_threads)
                               std::to_string(kMaxSteps) + " are allowed");
   }
   const auto points = job.at("output").at("history_points").get<std::int64_t>();
-  out.history_every = std::max<std::int64_t>(1, out.steps / points);
+  // Rounded up, so that a run records at most the samples and frames asked
+  // for (plus the initial state): 1.9x as many steps as points would
+  // otherwise sample every step, 1.9x the rows.
+  auto every = [&](std::int64_t wanted) {
+    return std::max<std::int64_t>(1, (out.steps + wanted - 1) / wanted);
+  };
+  out.history_every = every(points);
   const auto frames = job.at("output").at("frames").get<std::int64_t>();
   if (frames > 0) {
-    out.snapshot_every = std::max<std::int64_t>(1, out.steps / frames);
+    out.snapshot_every = every(frames);
     out.frames = 1 + out.steps / out.snapshot_every + (out.steps % out.snapshot_every ? 1 : 0);
   }
   if (out.threads_by == "size") choose_threads(out, most);
