@@ -259,6 +259,13 @@ export function resultView(root, id) {
         h("div", { class: "controls" }, play, slider, time)));
   }
 
+  // Who chose the thread count; for a trial, what it measured a step.
+  function threadsNote(s) {
+    const t = s.thread_trial;
+    if (t) return "the fastest of a trial: " + t.threads.map((n, k) => `${n} → ${sig(t.us_per_step[k], 3)} µs`).join(", ") + " a step";
+    return { caller: "as the server or command line set", job: "as the job set", size: "by the scene's size" }[s.threads_by] || "";
+  }
+
   function summaryPanel(s, files, pngDownload) {
     const a = s.analysis || {};
     const vs = a.velocity_stability || {};
@@ -277,6 +284,7 @@ export function resultView(root, id) {
       ["Particles", int(s.particles), s.particles_by_body ? Object.entries(s.particles_by_body).map(([k, v]) => `${k} ${int(v)}`).join(", ") : ""],
       ["Steps × dt", `${int(s.steps)} × ${eng(s.dt_s, "s")}`, `to t = ${eng(s.simulated_s, "s")}`],
       ["Wall time", duration(s.wall_s), s.particle_steps_per_s ? `${sig(s.particle_steps_per_s)} particle-steps/s` : ""],
+      ["Threads", s.threads === undefined ? null : int(s.threads), threadsNote(s)],
     ].filter(([, v]) => v !== null && v !== undefined);
     const order = ["results.h5", "results.xmf", "history.csv", "summary.json", "job.json"];
     const shown = (files || []).filter((f) => !f.name.startsWith("image-"))
