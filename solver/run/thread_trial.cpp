@@ -65,12 +65,13 @@ ThreadTrial trial_threads(const Simulation& sim, int most) {
     trial.chosen = 1;
     return trial;
   }
-  double best = trial.us_per_step[0];
+  // The largest count that beats every smaller one by the margin.
+  double fastest_smaller = trial.us_per_step[0];
   for (std::size_t k = 1; k < trial.threads.size(); ++k) {
-    if (trial.us_per_step[k] < (1.0 - kTrialMargin) * best) {
-      best = trial.us_per_step[k];
+    if (trial.us_per_step[k] < (1.0 - kTrialMargin) * fastest_smaller) {
       trial.chosen = trial.threads[k];
     }
+    fastest_smaller = std::min(fastest_smaller, trial.us_per_step[k]);
   }
   return trial;
 }
