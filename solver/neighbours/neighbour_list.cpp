@@ -66,12 +66,22 @@ void NeighbourList::build(const Particles& p, double cutoff, PairSelection selec
   ++builds_;
 }
 
+std::size_t NeighbourList::moved_too_far(std::size_t lo, std::size_t hi, const double* x,
+                                         const double* y) const {
+  const double *xb = x_built_.data(), *yb = y_built_.data();
+  const double limit = 0.25 * skin_ * skin_;
+  std::size_t moved = 0;
+#pragma omp simd reduction(+ : moved)
+  for (std::size_t i = lo; i < hi; ++i) {
+    const double dx = x[i] - xb[i], dy = y[i] - yb[i];
+    moved += dx * dx + dy * dy > limit ? 1 : 0;
+  }
+  return moved;
+}
+
 bool NeighbourList::needs_rebuild(const Particles& p) const {
   if (x_built_.size() != p.n) return true;
-  for (std::size_t i = 0; i < p.n; ++i) {
-    if (moved_too_far(i, p.x[i], p.y[i])) return true;
-  }
-  return false;
+  return moved_too_far(0, p.n, p.x.data(), p.y.data()) > 0;
 }
 
 }  // namespace gearsph

@@ -43,13 +43,10 @@ class NeighbourList {
   void build(const Particles& p, double cutoff, PairSelection selection, bool reference,
              int threads);
   bool needs_rebuild(const Particles& p) const;
-  // needs_rebuild for one particle at (x, y), for a pass that has the
-  // position at hand; only for lists built for the present particles
-  // (built_for).
-  bool moved_too_far(std::size_t i, double x, double y) const {
-    const double dx = x - x_built_[i], dy = y - y_built_[i];
-    return dx * dx + dy * dy > 0.25 * skin_ * skin_;
-  }
+  // needs_rebuild for particles lo .. hi at (x, y), for a pass that has the
+  // positions at hand: how many moved beyond half the skin. Only for lists
+  // built for the present particles (built_for).
+  std::size_t moved_too_far(std::size_t lo, std::size_t hi, const double* x, const double* y) const;
   bool built_for(std::size_t n) const { return builds_ > 0 && x_built_.size() == n; }
   std::size_t entries() const { return j.size(); }
   std::size_t builds() const { return builds_; }
