@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "solver/integrate/stability.hpp"
 #include "solver/job/job.hpp"
 #include "solver/job/json_schema.hpp"
 #include "solver/run/runner.hpp"
@@ -214,6 +215,26 @@ TEST(Jobs, FixedTimeStepAboveTheLimitIsRefusedWithTheLimit) {
   ASSERT_EQ(cfl_issues.size(), 1u);
   EXPECT_EQ(cfl_issues[0].pointer, "/time/cfl");
   EXPECT_NE(cfl_issues[0].message.find("Courant number"), std::string::npos);
+}
+
+// The stable-step estimate sums in a fixed order on any number of threads
+// (integrate/stability.cpp), so a job's step does not depend on them.
+TEST(Jobs, TheStableStepDoesNotDependOnTheThreads) {
+  json job = kPlate;
+  job["discretization"]["spacing_m"] = 0.001;  // 4,000 particles: windows in every chunk
+  PreparedJob prepared = prepare_job(job, 1);
+  Simulation& sim = prepared.scene.sim;
+  ASSERT_GT(sim.method.viscosity.alpha, 0.0);  // the damping operator is estimated
+  const StabilityLimit one = estimate_stability_limit(sim);
+  ASSERT_GT(one.damping_rate, 0.0);
+  EXPECT_EQ(one.dt_limit, prepared.time_step.dt_limit);
+  for (int threads : {2, 3}) {
+    sim.threads = threads;
+    const StabilityLimit many = estimate_stability_limit(sim);
+    EXPECT_EQ(many.omega_max, one.omega_max) << threads << " threads";
+    EXPECT_EQ(many.damping_rate, one.damping_rate) << threads << " threads";
+    EXPECT_EQ(many.dt_limit, one.dt_limit) << threads << " threads";
+  }
 }
 
 TEST(Jobs, AutomaticStepIsAFractionOfTheLimit) {
