@@ -181,6 +181,12 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads, int max_threads)
   const int most = max_threads > 0 ? max_threads : omp_get_max_threads();
   sim.threads = threads > 0 ? threads : job_threads > 0 ? std::min(job_threads, most) : 1;
   out.threads_by = threads > 0 ? "caller" : job_threads > 0 ? "job" : "size";
+  // A scene big enough to take its threads by size without a trial
+  // (choose_threads, below) has them for its set-up too: the stable-step
+  // estimate gives the same step on any number of threads.
+  if (out.threads_by == "size" && sim.particles.n >= kThreadsWithoutTrial) {
+    sim.threads = threads_for(sim.particles.n, most);
+  }
 
   const nlohmann::json& t = job.at("time");
   out.end_s = t.contains("end_s") ? t.at("end_s").get<double>() : out.scene.default_end_s;
