@@ -159,12 +159,11 @@ KickPowers close_run(const Kinematics& k, const Motion& m, std::size_t lo, std::
         vy[i] += dt_half * (k.ay[i] + k.ext_ay[i]);
       }
       break;
-    case Motion::Kind::GuidedX:
-#pragma omp simd reduction(+ : drive)
+    case Motion::Kind::GuidedX:  // v_y = 0: the guide does no work
+#pragma omp simd
       for (std::size_t i = lo; i < hi; ++i) {
         vx[i] += dt_half * (k.ax[i] + k.ext_ax[i]);
         vy[i] = 0.0;
-        drive -= mass[i] * (k.ay[i] + k.ext_ay[i]) * vy[i];  // v_y = 0: no work
       }
       break;
     case Motion::Kind::Fixed:

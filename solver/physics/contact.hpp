@@ -82,10 +82,13 @@ void prepare_contact(Simulation& sim);
 // rotation, given as its cosine c and sine s, into the state's scratch. The
 // total-Lagrangian stress pass turns them by F's rotation; contact_forces
 // turns them by the updated-Lagrangian angle rot.
+inline void turn_normal(double c, double s, double nx0, double ny0, double& nx, double& ny) {
+  nx = c * nx0 - s * ny0;
+  ny = s * nx0 + c * ny0;
+}
 inline void turn_surface_normal(const Particles& p, ContactState& state, std::size_t i, double c,
                                 double s) {
-  state.normal_x[i] = c * p.surf_nx[i] - s * p.surf_ny[i];
-  state.normal_y[i] = s * p.surf_nx[i] + c * p.surf_ny[i];
+  turn_normal(c, s, p.surf_nx[i], p.surf_ny[i], state.normal_x[i], state.normal_y[i]);
 }
 // The pair loop, as a worksharing loop without its closing barrier (call it
 // from inside a parallel region): contact_ax, contact_ay of every particle,

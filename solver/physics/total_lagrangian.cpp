@@ -218,9 +218,7 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
       const double inv = 1.0 / std::sqrt(a * a + b * b);
       // Interior particles have depth +inf and no normal.
       if (contact_rows[i] != contact_rows[i + 1] && std::abs(surf_depth[i]) <= kMaxDepth) {
-        const double cr = a * inv, sr = b * inv;  // as turn_surface_normal
-        nx[i] = cr * nx0[i] - sr * ny0[i];
-        ny[i] = sr * nx0[i] + cr * ny0[i];
+        turn_normal(a * inv, b * inv, nx0[i], ny0[i], nx[i], ny[i]);
       }
     }
   }
