@@ -2,10 +2,12 @@
 // defaults, the time-step refusal and what the examples promise.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "solver/integrate/integrator.hpp"
 #include "solver/integrate/stability.hpp"
 #include "solver/job/job.hpp"
 #include "solver/job/json_schema.hpp"
@@ -235,6 +237,54 @@ TEST(Jobs, TheStableStepDoesNotDependOnTheThreads) {
     EXPECT_EQ(many.damping_rate, one.damping_rate) << threads << " threads";
     EXPECT_EQ(many.dt_limit, one.dt_limit) << threads << " threads";
   }
+}
+
+// The estimate runs on the scene itself (integrate/stability.cpp): an
+// updated-Lagrangian scene gets back its state to the bit, initial stress
+// included, and no reference pairs; a total-Lagrangian scene keeps the pairs
+// for its run, which then goes exactly as with pairs built afresh.
+TEST(Jobs, TheStableStepEstimatePutsTheSceneBack) {
+  json disk = {{"name", "disk"},
+               {"scene",
+                {{"type", "spinning_disk"},
+                 {"initial_stress_Pa", {{"xx", 2e6}, {"yy", -1e6}, {"xy", 5e5}}}}},
+               {"method", {{"formulation", "updated_lagrangian"}}},
+               {"output", {{"frames", 0}}}};
+  PreparedJob ul = prepare_job(disk, 2);
+  Simulation& sim = ul.scene.sim;
+  EXPECT_FALSE(sim.reference.built());
+  const Particles before = sim.particles;
+  ASSERT_TRUE(std::any_of(before.sxx.begin(), before.sxx.end(), [](double s) { return s != 0; }));
+  const MethodConfig method = sim.method;
+  const StabilityLimit limit = estimate_stability_limit(sim);
+  EXPECT_EQ(limit.dt_limit, ul.time_step.dt_limit);
+  EXPECT_FALSE(sim.reference.built());
+  EXPECT_EQ(sim.method.formulation, method.formulation);
+  EXPECT_EQ(sim.method.viscosity.alpha, method.viscosity.alpha);
+  EXPECT_EQ(sim.method.hourglass.coefficient, method.hourglass.coefficient);
+  const Particles& after = sim.particles;
+  for (auto field : {&Particles::x, &Particles::y, &Particles::vx, &Particles::vy, &Particles::p,
+                     &Particles::sxx, &Particles::syy, &Particles::szz, &Particles::sxy,
+                     &Particles::rho, &Particles::fxx, &Particles::fyy, &Particles::ax}) {
+    EXPECT_TRUE(after.*field == before.*field);
+  }
+
+  json plate = kPlate;
+  plate["discretization"]["spacing_m"] = 0.001;
+  PreparedJob tl = prepare_job(plate, 2);
+  Simulation& kept = tl.scene.sim;
+  ASSERT_TRUE(kept.reference.built());
+  Simulation fresh = kept;
+  fresh.reference = ReferencePairs();
+  integrate::initialise(kept);
+  integrate::initialise(fresh);
+  for (int s = 0; s < 50; ++s) {
+    integrate::step(kept);
+    integrate::step(fresh);
+  }
+  EXPECT_TRUE(kept.particles.x == fresh.particles.x);
+  EXPECT_TRUE(kept.particles.vy == fresh.particles.vy);
+  EXPECT_TRUE(kept.particles.sxx == fresh.particles.sxx);
 }
 
 TEST(Jobs, AutomaticStepIsAFractionOfTheLimit) {

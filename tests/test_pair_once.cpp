@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <set>
 #include <vector>
 
 #include "solver/core/simulation.hpp"
@@ -191,6 +192,33 @@ TEST(PairOnce, ArraysWrittenByRowsOwnWholeCacheLines) {
   EXPECT_EQ(reinterpret_cast<std::uintptr_t>(&rp.chunk_peaks[1]) -
                 reinterpret_cast<std::uintptr_t>(&rp.chunk_peaks[0]),
             kCacheLine);
+}
+
+// Arrays mapped on their own (page-aligned) are shifted by a different
+// number of cache lines each (cache_aligned.hpp): 64 successive arrays take
+// 64 different L1 sets, and the shift stays within 1/16 of the array and
+// 64 KiB.
+TEST(PairOnce, LargeArraysStartInDifferentCacheSets) {
+  for (std::size_t bytes : {kStaggerFrom, std::size_t{1} << 24}) {
+    std::set<std::size_t> sets;
+    for (int k = 0; k < 64; ++k) {
+      const std::size_t shift = stagger(bytes);
+      EXPECT_EQ(shift % kCacheLine, 0u);
+      EXPECT_GT(shift, 0u);
+      EXPECT_LE(shift, std::min<std::size_t>(bytes / 16, std::size_t{64} << 10));
+      sets.insert(shift % 4096 / kCacheLine);
+    }
+    EXPECT_EQ(sets.size(), 64u) << bytes << " bytes";
+  }
+  // The shifted arrays are whole and apart: each keeps its values.
+  std::vector<Column<double>> arrays;
+  for (int k = 0; k < 16; ++k) {
+    arrays.emplace_back(kStaggerFrom / sizeof(double) + k, double(k));
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(arrays.back().data()) % kCacheLine, 0u);
+  }
+  for (int k = 0; k < 16; ++k) {
+    EXPECT_TRUE(std::all_of(arrays[k].begin(), arrays[k].end(), [&](double v) { return v == k; }));
+  }
 }
 
 TEST(PairOnce, ChunksAreCutAtEqualCost) {

@@ -379,6 +379,23 @@ int bench_main(Args& args) {
                       {"peak_bytes_per_particle", x.peak_per_particle}});
     }
     report["scaling"] = rows;
+    // Per particle added between the two largest cases: what a particle
+    // costs without the fixed part (libraries, threads' stacks, the heap's
+    // first megabytes), which dominates the per-particle figure at 1e3-1e4.
+    if (rows.size() >= 2) {
+      const json& a = rows[rows.size() - 2];
+      const json& b = rows.back();
+      const double na = a["particles"].get<double>(), nb = b["particles"].get<double>();
+      auto added = [&](const char* key) {
+        return (b[key].get<double>() * nb - a[key].get<double>() * na) / (nb - na);
+      };
+      const double rss = added("rss_bytes_per_particle");
+      const double peak = added("peak_bytes_per_particle");
+      std::printf("   per particle added from %.0e to %.0e: rss %.0f B, peak %.0f B\n",
+                  a["target"].get<double>(), b["target"].get<double>(), rss, peak);
+      report["scaling_added_particle"] = {
+          {"from", a["target"]}, {"to", b["target"]}, {"rss_bytes", rss}, {"peak_bytes", peak}};
+    }
     std::printf("\n");
   }
 

@@ -24,9 +24,9 @@ void Particles::resize(std::size_t count) {
 }
 
 void Particles::release_updated_lagrangian() {
-  for (auto* v : {&drho, &lxx,  &lxy,  &lyx,  &lyy,  &bxx,  &bxy,  &byx, &byy, &bqx0,
-                  &bqx1, &bqx2, &bqy0, &bqy1, &bqy2, &rxx,  &ryy,  &rxy, &qxx, &qxy,
-                  &qyx,  &qyy,  &qqx0, &qqx1, &qqx2, &qqy0, &qqy1, &qqy2}) {
+  for (auto* v : {&drho, &lxx,  &lxy,  &lyx,  &lyy,  &bxx,  &bxy,  &byx,  &byy, &bqx0,
+                  &bqx1, &bqx2, &bqy0, &bqy1, &bqy2, &rxx,  &ryy,  &rxy,  &qxx, &qxy,
+                  &qyx,  &qyy,  &qqx0, &qqx1, &qqx2, &qqy0, &qqy1, &qqy2, &rot}) {
     Column<double>().swap(*v);
   }
 }

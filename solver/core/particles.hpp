@@ -60,8 +60,9 @@ struct Particles {
   void resize(std::size_t count);
   // Frees the arrays only the updated-Lagrangian step uses (density rate,
   // velocity gradient, gradient correction, artificial stress, the cached
-  // sigma/rho^2 C blocks): 28 doubles a particle a total-Lagrangian run
-  // never touches (its corrections live in its pair gradients). A later
+  // sigma/rho^2 C blocks, the material rotation): 29 doubles a particle a
+  // total-Lagrangian run never touches (its corrections live in its pair
+  // gradients, and its stress pass turns the contact normals by F). A later
   // resize() brings them back.
   void release_updated_lagrangian();
   void add(double px, double py, double m, double density, int body_index, int motion_index);

@@ -183,14 +183,14 @@ RegionStep total_lagrangian_step(Simulation& sim, double dt) {
 
 void initialise(Simulation& sim) {
   if (total_lagrangian(sim)) {
-    physics::total_lagrangian_setup(sim);
+    physics::total_lagrangian_setup(sim);        // keeps the pairs the stable-step estimate built
     sim.particles.release_updated_lagrangian();  // this run never takes a UL step
   }
   refresh_neighbours(sim, sim.contacts.needs_rebuild(sim.particles));
   forces(sim, 0.0);  // accelerations at t = 0, stress unchanged
   external_forces(sim, 0.0);
   // The setup's temporaries (moment matrices, the stable-step estimate's
-  // copy of the scene) went back to the heap in pieces the allocator keeps;
+  // vectors) went back to the heap in pieces the allocator keeps;
   // return them to the system, so that a long run holds only what it uses
   // (~22 % of the resident memory at 1e6 particles; docs/speed-accuracy.md).
   malloc_trim(0);

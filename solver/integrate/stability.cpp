@@ -48,10 +48,12 @@ double squared_norm(const std::vector<double>& ux, const std::vector<double>& uy
 
 // Largest eigenvalue of a linear operator on the integrated velocity or
 // displacement components, by power iteration from a fixed random start.
+// apply(u) leaves A u in the particles' accelerations, which the passes
+// write anyway: one vector pair of set-up memory, not two.
 template <class Apply>
-double largest_eigenvalue(const Simulation& sim, Apply&& apply) {
+double largest_eigenvalue(Simulation& sim, Apply&& apply) {
   const std::size_t n = sim.particles.n;
-  std::vector<double> ux(n), uy(n), ax(n), ay(n);
+  std::vector<double> ux(n), uy(n);
   // Which components are integrated (not prescribed).
   std::vector<std::uint8_t> free_x(n), free_y(n);
   std::vector<double> block_sums((n + kNormBlock - 1) / kNormBlock);
@@ -63,6 +65,8 @@ double largest_eigenvalue(const Simulation& sim, Apply&& apply) {
     ux[i] = free_x[i] ? uni(rng) : 0.0;
     uy[i] = free_y[i] ? uni(rng) : 0.0;
   }
+  const double* ax = sim.particles.ax.data();
+  const double* ay = sim.particles.ay.data();
   double lambda = 0.0;
   for (int it = 0; it < kIterations; ++it) {
     const double norm_u = std::sqrt(squared_norm(ux, uy, block_sums, sim.threads));
@@ -72,48 +76,119 @@ double largest_eigenvalue(const Simulation& sim, Apply&& apply) {
       ux[i] /= norm_u;
       uy[i] /= norm_u;
     }
-    apply(ux, uy, ax, ay);
+    apply(ux, uy);
 #pragma omp parallel for num_threads(sim.threads) schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-      ax[i] = free_x[i] ? ax[i] : 0.0;
-      ay[i] = free_y[i] ? ay[i] : 0.0;
+      ux[i] = free_x[i] ? ax[i] : 0.0;
+      uy[i] = free_y[i] ? ay[i] : 0.0;
     }
-    lambda = std::sqrt(squared_norm(ax, ay, block_sums, sim.threads));
-    std::swap(ux, ax);
-    std::swap(uy, ay);
+    lambda = std::sqrt(squared_norm(ux, uy, block_sums, sim.threads));
   }
   return lambda;
 }
 
+// What the estimate changes in the scene it runs on, and puts back: the
+// method (total-Lagrangian, no viscosity), the positions and accelerations,
+// and in an updated-Lagrangian scene the stress, density and deformation
+// that the total-Lagrangian passes overwrite, and the reference pairs they
+// need. On an exception, the destructor puts back all but the per-step
+// state of a total-Lagrangian scene, which its set-up starts afresh anyway.
+class Borrowed {
+ public:
+  explicit Borrowed(Simulation& sim) : sim_(sim), method_(sim.method), j2_(sim.largest_j2) {
+    const Particles& p = sim.particles;
+    updated_ = sim.method.formulation != Formulation::TotalLagrangian;
+    if (!std::equal(p.x.begin(), p.x.end(), p.x0.begin()) ||
+        !std::equal(p.y.begin(), p.y.end(), p.y0.begin())) {
+      x_ = p.x;  // a scene that starts deformed (none does yet)
+      y_ = p.y;
+    }
+    if (updated_) {
+      for (const Column<double>* v : state(sim.particles)) saved_.push_back(*v);
+    }
+    // The stress pass turns the contact normals, which is the run's business.
+    normal_x_.swap(sim.contact_state.normal_x);
+  }
+  Borrowed(const Borrowed&) = delete;
+  Borrowed& operator=(const Borrowed&) = delete;
+  ~Borrowed() {
+    if (!returned_) put_back();
+  }
+  // The normal way out: a total-Lagrangian scene keeps its reference pairs
+  // (total_lagrangian_setup starts their per-step state afresh), and its
+  // stress and density are those of its initial positions.
+  void give_back() {
+    put_back();
+    returned_ = true;
+    if (!updated_) {
+      physics::total_lagrangian_setup(sim_);
+      physics::total_lagrangian_stress(sim_);
+      sim_.largest_j2 = j2_;
+    }
+  }
+
+ private:
+  static std::vector<Column<double>*> state(Particles& p) {
+    return {&p.p, &p.sxx, &p.syy, &p.szz, &p.sxy, &p.rho, &p.fxx, &p.fxy, &p.fyx, &p.fyy};
+  }
+  void put_back() noexcept {
+    Particles& p = sim_.particles;
+    sim_.method = method_;
+    std::copy(x_.empty() ? p.x0.begin() : x_.begin(), x_.empty() ? p.x0.end() : x_.end(),
+              p.x.begin());
+    std::copy(y_.empty() ? p.y0.begin() : y_.begin(), y_.empty() ? p.y0.end() : y_.end(),
+              p.y.begin());
+    std::fill(p.ax.begin(), p.ax.end(), 0.0);
+    std::fill(p.ay.begin(), p.ay.end(), 0.0);
+    normal_x_.swap(sim_.contact_state.normal_x);
+    if (updated_) {
+      const std::vector<Column<double>*> to = state(p);
+      for (std::size_t k = 0; k < saved_.size(); ++k) to[k]->swap(saved_[k]);
+      sim_.reference = ReferencePairs();
+    }
+    sim_.largest_j2 = j2_;
+  }
+  Simulation& sim_;
+  const MethodConfig method_;
+  const LargestJ2 j2_;
+  bool updated_ = false, returned_ = false;
+  Column<double> x_, y_, normal_x_;
+  std::vector<Column<double>> saved_;
+};
+
 }  // namespace
 
-StabilityLimit estimate_stability_limit(const Simulation& original) {
-  // Work on a copy in the total-Lagrangian form: at the initial
-  // configuration its linearisation is the updated-Lagrangian one too.
-  Simulation sim = original;
+StabilityLimit estimate_stability_limit(Simulation& sim) {
+  // On the scene itself, not a copy (the copy was the set-up's peak of
+  // memory: docs/speed-accuracy.md), in the total-Lagrangian form: at the
+  // initial configuration its linearisation is the updated-Lagrangian one
+  // too. In a total-Lagrangian scene the reference pairs built here are the
+  // run's own.
+  Borrowed borrowed(sim);
+  const bool updated = sim.method.formulation != Formulation::TotalLagrangian;
+  const ArtificialViscosity av = sim.method.viscosity;
   sim.method.formulation = Formulation::TotalLagrangian;
-  sim.particles.release_updated_lagrangian();  // before the pairs: a lower peak of memory
   sim.method.viscosity.alpha = sim.method.viscosity.beta = 0.0;
-  if (original.method.formulation != Formulation::TotalLagrangian) {
-    sim.method.hourglass.coefficient = 0.0;  // a damping in UL, not a stiffness
-  }
+  if (updated) sim.method.hourglass.coefficient = 0.0;  // a damping in UL, not a stiffness
   Particles& p = sim.particles;
   const std::size_t n = p.n;
-  for (std::size_t i = 0; i < n; ++i) {
-    p.x[i] = p.x0[i];
-    p.y[i] = p.y0[i];
-    p.vx[i] = p.vy[i] = 0.0;
-  }
+  p.x = p.x0;
+  p.y = p.y0;
   physics::total_lagrangian_setup(sim);
   physics::total_lagrangian_stress(sim);
   physics::total_lagrangian_momentum(sim, 0.0);
-  const Column<double> ax0 = p.ax, ay0 = p.ay;
+  // The forces of the undeformed scene, subtracted from those of each
+  // perturbed one. They vanish to the bit where x = X (u = 0, so F = I and
+  // P = 0 exactly), and are then not stored.
+  const bool a0_zero = std::all_of(p.ax.begin(), p.ax.end(), [](double a) { return a == 0.0; }) &&
+                       std::all_of(p.ay.begin(), p.ay.end(), [](double a) { return a == 0.0; });
+  const Column<double> ax0 = a0_zero ? Column<double>() : p.ax;
+  const Column<double> ay0 = a0_zero ? Column<double>() : p.ay;
   const double eps = 1e-6 * sim.discretization.dx;
 
   StabilityLimit out;
   const double lambda_k =
-      largest_eigenvalue(sim, [&](const std::vector<double>& ux, const std::vector<double>& uy,
-                                  std::vector<double>& ax, std::vector<double>& ay) {
+      largest_eigenvalue(sim, [&](const std::vector<double>& ux, const std::vector<double>& uy) {
         for (std::size_t i = 0; i < n; ++i) {
           p.x[i] = p.x0[i] + eps * ux[i];
           p.y[i] = p.y0[i] + eps * uy[i];
@@ -121,15 +196,14 @@ StabilityLimit estimate_stability_limit(const Simulation& original) {
         physics::total_lagrangian_stress(sim);
         physics::total_lagrangian_momentum(sim, 0.0);
         for (std::size_t i = 0; i < n; ++i) {
-          ax[i] = -(p.ax[i] - ax0[i]) / eps;
-          ay[i] = -(p.ay[i] - ay0[i]) / eps;
+          p.ax[i] = -(p.ax[i] - (a0_zero ? 0.0 : ax0[i])) / eps;
+          p.ay[i] = -(p.ay[i] - (a0_zero ? 0.0 : ay0[i])) / eps;
         }
       });
   out.omega_max = std::sqrt(std::max(lambda_k, 0.0));
 
   // Linear part of the artificial viscosity, every pair taken as approaching:
   // a_i = sum_j m_j alpha c_ij h (v_ij . x_ij) / ((r^2 + eta^2) rho_ij) grad_i W_ij.
-  const ArtificialViscosity& av = original.method.viscosity;
   if (av.alpha > 0.0) {
     const double h = sim.h(), eta2 = std::pow(av.eta_over_h * h, 2);
     const ReferencePairs& rp = sim.reference;
@@ -140,15 +214,16 @@ StabilityLimit estimate_stability_limit(const Simulation& original) {
     RowChunks chunks;
     chunks.plan(rp.rows, rp.j, kDampingChunks, 2);
     out.damping_rate =
-        largest_eigenvalue(sim, [&](const std::vector<double>& vx, const std::vector<double>& vy,
-                                    std::vector<double>& ax, std::vector<double>& ay) {
+        largest_eigenvalue(sim, [&](const std::vector<double>& vx, const std::vector<double>& vy) {
+          double* const ax = p.ax.data();
+          double* const ay = p.ay.data();
 #pragma omp parallel num_threads(sim.threads)
           {
 #pragma omp for schedule(static)
             for (int c = 0; c < kDampingChunks; ++c) {
               const std::size_t lo = chunks.begin(c), hi = chunks.end(c);
-              std::fill(ax.begin() + lo, ax.begin() + hi, 0.0);
-              std::fill(ay.begin() + lo, ay.begin() + hi, 0.0);
+              std::fill(ax + lo, ax + hi, 0.0);
+              std::fill(ay + lo, ay + hi, 0.0);
               double* const spill[2] = {chunks.spill(c, 0), chunks.spill(c, 1)};
               for (std::size_t i = lo; i < hi; ++i) {
                 for (std::uint32_t k = rp.rows[i]; k < rp.rows[i + 1]; ++k) {
@@ -175,7 +250,7 @@ StabilityLimit estimate_stability_limit(const Simulation& original) {
         // (the loop's closing barrier: every window is written)
 #pragma omp for schedule(static)
             for (int c = 0; c < kDampingChunks; ++c) {
-              double* const sums[2] = {ax.data(), ay.data()};
+              double* const sums[2] = {ax, ay};
               chunks.add_spills(c, sums, 2);
             }
           }
@@ -187,12 +262,12 @@ StabilityLimit estimate_stability_limit(const Simulation& original) {
   // The Courant condition's |v|: moving particles carry signals faster.
   double c_max = 0.0, cv_max = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
-    c_max = std::max(c_max, original.particles.cs[i]);
-    cv_max = std::max(cv_max, original.particles.cs[i] +
-                                  std::hypot(original.particles.vx[i], original.particles.vy[i]));
+    c_max = std::max(c_max, p.cs[i]);
+    cv_max = std::max(cv_max, p.cs[i] + std::hypot(p.vx[i], p.vy[i]));
   }
   if (cv_max > 0) dt *= c_max / cv_max;
   out.dt_limit = kSafety * dt;
+  borrowed.give_back();
   return out;
 }
 

@@ -23,6 +23,8 @@ struct StabilityLimit {
   int iterations = 0;
 };
 
-StabilityLimit estimate_stability_limit(const Simulation& sim);
+// Runs on the scene itself and leaves it as it found it; a total-Lagrangian
+// scene keeps the reference pairs it builds (physics::total_lagrangian_setup).
+StabilityLimit estimate_stability_limit(Simulation& sim);
 
 }  // namespace gearsph

@@ -49,7 +49,7 @@ double max_signal_speed(const Simulation& sim) {
   return s;
 }
 
-TimeStepChoice choose_time_step(const Simulation& sim, const TimeStepRequest& req) {
+TimeStepChoice choose_time_step(Simulation& sim, const TimeStepRequest& req) {
   TimeStepChoice c;
   const double h = sim.h();
   c.signal_speed = max_signal_speed(sim);

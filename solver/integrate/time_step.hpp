@@ -51,7 +51,8 @@ struct TimeStepRequest {
 };
 
 // Refuses (TimeStepError, with the limit in the message) a dt or Courant
-// number above the stable limit unless allow_unstable is set.
-TimeStepChoice choose_time_step(const Simulation& sim, const TimeStepRequest& request);
+// number above the stable limit unless allow_unstable is set. The estimate
+// runs on sim itself and puts it back (estimate_stability_limit).
+TimeStepChoice choose_time_step(Simulation& sim, const TimeStepRequest& request);
 
 }  // namespace gearsph

@@ -162,9 +162,9 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads, int max_threads)
   Simulation& sim = out.scene.sim;
   sim.method = read_method(job.at("method"));
   // A total-Lagrangian run never takes an updated-Lagrangian step: free
-  // those 28 arrays now rather than at integrate::initialise, so that the
-  // stable-step estimate's copy of the scene below does not hold them
-  // twice (the set-up's peak of memory; docs/speed-accuracy.md).
+  // those 29 arrays now rather than at integrate::initialise, before the
+  // stable-step estimate below builds the reference pairs beside them (the
+  // set-up's peak of memory; docs/speed-accuracy.md).
   if (sim.method.formulation == Formulation::TotalLagrangian) {
     sim.particles.release_updated_lagrangian();
   }

@@ -14,7 +14,9 @@
 #include <vector>
 
 #include "solver/core/cache_aligned.hpp"
+#include "solver/kernels/kernel.hpp"
 #include "solver/neighbours/row_chunks.hpp"
+#include "solver/physics/kernel_correction.hpp"
 
 namespace gearsph {
 struct Simulation;
@@ -65,6 +67,18 @@ struct ReferencePairs {
   std::vector<ChunkPeak> chunk_peaks;
   // Lame constants per body, so that the step divides nothing per particle.
   std::vector<double> lambda_body, mu_body;
+  // What the pairs and gradients were built for. The stable-step estimate
+  // builds them on the scene itself, before the run; the run's set-up then
+  // keeps them if nothing here changed since (total_lagrangian_setup).
+  struct Basis {
+    std::size_t particles = 0;
+    KernelType kernel = KernelType::SeedQuartic;
+    double h = 0.0;
+    GradientCorrection correction = GradientCorrection::None;
+    bool keep_w = false;
+    bool operator==(const Basis&) const = default;
+  };
+  Basis basis;
   bool built() const { return !rows.empty(); }
   std::size_t pairs() const { return j.size(); }
   // Directed interactions (i, j) and (j, i), as full rows would count them.
@@ -72,7 +86,9 @@ struct ReferencePairs {
 };
 
 namespace physics {
-// Builds the reference pairs and the corrected gradients (once per run).
+// Builds the reference pairs and the corrected gradients (once per run;
+// kept from an earlier call if built for the same particles, kernel, h,
+// correction and hourglass setting), and starts the per-step state afresh.
 void total_lagrangian_setup(Simulation& sim);
 
 // The passes of a step, for the integrator's own parallel region
