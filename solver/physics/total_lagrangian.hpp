@@ -86,9 +86,11 @@ struct ReferencePairs {
 };
 
 namespace physics {
-// Builds the reference pairs and the corrected gradients (once per run;
-// kept from an earlier call if built for the same particles, kernel, h,
-// correction and hourglass setting), and starts the per-step state afresh.
+// Builds the reference pairs and the corrected gradients, and starts the
+// per-step state afresh. Pairs from an earlier call are kept if built for
+// as many particles with the same kernel, h, correction and hourglass
+// setting: the stable-step estimate builds them just before the run's own
+// set-up, on the same reference positions, which nothing moves between.
 void total_lagrangian_setup(Simulation& sim);
 
 // The passes of a step, for the integrator's own parallel region
