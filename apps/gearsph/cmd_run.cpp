@@ -1,4 +1,5 @@
 // gearsph run JOB.json --out DIR
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -57,6 +58,12 @@ int cmd_run(Args& args) {
   if (pos.size() != 1 || !out) throw std::invalid_argument("usage: gearsph run JOB.json --out DIR");
   const std::string& path = pos[0];
 
+  // A scene of a million particles takes ~20 s to set up (its pairs and
+  // stable step): say so first, then how long it took.
+  if (!quiet) {
+    std::fprintf(stderr, "gearsph run: setting up %s (scene, pairs, stable step)\n", path.c_str());
+  }
+  const auto setup_start = std::chrono::steady_clock::now();
   PreparedJob job;
   try {
     job = prepare_job(parse_job_text(read_file(path)), threads);
@@ -74,10 +81,11 @@ int cmd_run(Args& args) {
     std::fprintf(
         stderr,
         "gearsph run: %s: %s, %zu particles, %lld steps of %.4g s (%s; Courant %.3g, stable "
-        "limit %.3g), %s\n",
+        "limit %.3g), %s; set up in %.2f s\n",
         job.job.at("name").get<std::string>().c_str(), job.scene.type.c_str(), sim.particles.n,
         static_cast<long long>(job.steps), sim.dt, job.time_step.chosen_by.c_str(),
-        job.time_step.courant, job.time_step.courant_limit, threads_text(job).c_str());
+        job.time_step.courant, job.time_step.courant_limit, threads_text(job).c_str(),
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - setup_start).count());
 #ifdef GEARSPH_WITH_RESULTS
     // Disk use, stated before the run: an upper bound (ResultsRun tests).
     std::fprintf(stderr, "gearsph run: %lld frames (output.frames): results.h5 at most %.3g MB\n",
