@@ -169,10 +169,9 @@ TEST(PairOnce, ArraysWrittenByRowsOwnWholeCacheLines) {
   const Particles& p = sim.particles;
   const ReferencePairs& rp = sim.reference;
   const Column<double>* arrays[] = {
-      &p.x,        &p.y,        &p.vx,     &p.vy,     &p.ax,   &p.ay,   &p.rho, &p.p,
-      &p.sxx,      &p.syy,      &p.sxy,    &p.szz,    &p.fxx,  &p.fxy,  &p.fyx, &p.fyy,
-      &p.ext_ax,   &p.ext_ay,   &rp.px,    &rp.py,    &rp.pyx, &rp.pyy, &rp.ux, &rp.uy,
-      &rp.visc_ax, &rp.visc_ay, &rp.hg_ax, &rp.hg_ay, &rp.gix, &rp.dw0};
+      &p.x,    &p.y,    &p.vx,  &p.vy,  &p.ax,    &p.ay,     &p.rho,    &p.p,      &p.sxx, &p.syy,
+      &p.sxy,  &p.szz,  &p.fxx, &p.fxy, &p.fyx,   &p.fyy,    &p.ext_ax, &p.ext_ay, &rp.px, &rp.py,
+      &rp.pyx, &rp.pyy, &rp.ux, &rp.uy, &rp.sums, &rp.hg_ax, &rp.hg_ay, &rp.gix,   &rp.dw0};
   std::vector<std::pair<std::uintptr_t, std::uintptr_t>> lines;
   for (const Column<double>* a : arrays) {
     ASSERT_FALSE(a->empty());
@@ -257,6 +256,55 @@ TEST(PairOnce, ChunksAreCutAtEqualCost) {
   EXPECT_EQ(chunks.end(0), 336u);
   EXPECT_EQ(chunks.end(1), 664u);
   EXPECT_EQ(chunks.end(2), 1000u);
+}
+
+// A pass may keep four sums of a row side by side (4 i + q) and spill them
+// as one group: each row gets the sums, in the same order, that four
+// separate arrays get. Rows 0-11 of a strip, each with neighbours i+1 ..
+// i+4, cut for 3 threads, so that every window is used.
+TEST(PairOnce, GroupedSpillsEqualSeparateOnes) {
+  std::vector<std::uint32_t> rows = {0}, j;
+  const std::uint32_t n = 12;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    for (std::uint32_t k = i + 1; k <= std::min(i + 4, n - 1); ++k) j.push_back(k);
+    rows.push_back(static_cast<std::uint32_t>(j.size()));
+  }
+  RowChunks apart, grouped;
+  apart.plan(rows, j, 3, 4);
+  grouped.plan(rows, j, 3, 4);
+  ASSERT_LT(apart.cross(apart.end(0) - 1), rows[apart.end(0)]);  // chunk 0 spills
+  std::vector<double> sums[4], together(4 * n, 0.0);
+  for (auto& s : sums) s.assign(n, 0.0);
+  double* to[4] = {sums[0].data(), sums[1].data(), sums[2].data(), sums[3].data()};
+  // Pair (i, j) adds 1 / (1 + i + 10 j + 100 q) to j's sum q: a sum whose
+  // order of terms shows in its last bits.
+  auto value = [](std::size_t i, std::size_t k, int q) {
+    return 1.0 / (1.0 + i + 10.0 * k + 100.0 * q);
+  };
+  for (int c = 0; c < 3; ++c) {
+    const std::size_t hi = apart.end(c);
+    for (std::size_t i = apart.begin(c); i < hi; ++i) {
+      for (std::uint32_t k = rows[i]; k < rows[i + 1]; ++k) {
+        const bool cross = k >= apart.cross(i);
+        for (int q = 0; q < 4; ++q) {
+          const double v = value(i, j[k], q);
+          (cross ? apart.spill(c, q)[j[k] - hi] : to[q][j[k]]) += v;
+          (cross ? grouped.spill_grouped(c)[4 * (j[k] - hi) + q] : together[4 * j[k] + q]) += v;
+        }
+      }
+    }
+  }
+  for (int c = 0; c < 3; ++c) {
+    apart.add_spills(c, to, 4);
+    grouped.add_spills_grouped(c, together.data(), 4);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int q = 0; q < 4; ++q) {
+      EXPECT_EQ(together[4 * i + q], sums[q][i]) << "row " << i << ", sum " << q;
+    }
+  }
+  // The first row of a later chunk received spilled sums.
+  EXPECT_GT(sums[0][apart.begin(1)], 0.0);
 }
 
 // Every 1024 steps the momentum cut is made again from the pairs the last

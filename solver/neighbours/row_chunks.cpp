@@ -49,17 +49,34 @@ void RowChunks::plan(const std::vector<std::uint32_t>& rows, const std::vector<s
   spill_.assign(spill_at_[t_count], 0.0);
 }
 
-void RowChunks::add_spills(int c, double* const* dst, int components) {
+void RowChunks::add_spills(int c, double* const* dst, int count, int first) {
   const std::size_t lo = begin(c), hi = end(c);
   for (int t = 0; t < c; ++t) {
     const std::size_t w0 = end(t), w1 = reach_[t];
     const std::size_t from = std::max(lo, w0), to = std::min(hi, w1);
     if (from >= to) continue;
-    for (int q = 0; q < components; ++q) {
-      double* s = spill(t, q);
+    for (int q = 0; q < count; ++q) {
+      double* s = spill(t, first + q);
       for (std::size_t i = from; i < to; ++i) {
         dst[q][i] += s[i - w0];
         s[i - w0] = 0.0;
+      }
+    }
+  }
+}
+
+void RowChunks::add_spills_grouped(int c, double* dst, int group) {
+  const std::size_t lo = begin(c), hi = end(c);
+  const std::size_t g = static_cast<std::size_t>(group);
+  for (int t = 0; t < c; ++t) {
+    const std::size_t w0 = end(t), w1 = reach_[t];
+    const std::size_t from = std::max(lo, w0), to = std::min(hi, w1);
+    if (from >= to) continue;
+    double* s = spill_grouped(t);
+    for (std::size_t i = from; i < to; ++i) {
+      for (std::size_t q = 0; q < g; ++q) {
+        dst[g * i + q] += s[g * (i - w0) + q];
+        s[g * (i - w0) + q] = 0.0;
       }
     }
   }

@@ -59,10 +59,17 @@ class RowChunks {
   std::uint32_t cross(std::size_t i) const { return cross_[i]; }
   // Component q of chunk c's window: index it with j - end(c).
   double* spill(int c, int q) { return spill_.data() + spill_at_[c] + q * window(c); }
-  // Adds to dst[q][i] every window value that lands on a row of chunk c and
-  // zeroes it, for q < components; call after a barrier that follows the
-  // pair loop.
-  void add_spills(int c, double* const* dst, int components);
+  // Components 0 .. group-1 of chunk c's window kept together, as a loop
+  // that writes them as one vector wants them: value q for row j at
+  // group * (j - end(c)) + q. The same memory as spill(c, 0 .. group-1).
+  double* spill_grouped(int c) { return spill_.data() + spill_at_[c]; }
+  // Adds to dst[q][i] every value of components first .. first+count-1
+  // that lands on a row of chunk c and zeroes it; call after a barrier that
+  // follows the pair loop.
+  void add_spills(int c, double* const* dst, int count, int first = 0);
+  // The same for components 0 .. group-1 of spill_grouped, into
+  // dst[group * i + q].
+  void add_spills_grouped(int c, double* dst, int group);
 
  private:
   std::size_t window(int c) const { return reach_[c] - first_[c + 1]; }

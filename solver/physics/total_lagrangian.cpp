@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -38,6 +39,22 @@ constexpr double kApproachingPairCost = 1.0;
 // cut changes which sums spill, so the round-off. The deformation cut never
 // changes: the reference pairs do not.
 constexpr long kReplanSteps = 1024;
+
+// Four sums of one particle as one vector (GCC's vector extension: one
+// AVX register). A pair adds its four values to its far end with one load,
+// one fused multiply-add and one store, where four scattered sums took a
+// quarter of the momentum pass (docs/speed-accuracy.md, tenth round).
+using Four = double __attribute__((vector_size(4 * sizeof(double))));
+
+// to[0..3] += a * b, each lane rounded once, as the scalar to += a * b is
+// (and to += a exactly where b is 1). By reference: no vector in the
+// function's signature, so no ABI to depend on the instruction set.
+inline void add_product(double* to, const Four& a, const Four& b) {
+  Four sum;
+  std::memcpy(&sum, to, sizeof sum);
+  sum = a * b + sum;
+  std::memcpy(to, &sum, sizeof sum);
+}
 
 struct Cuts {
   RowChunks& deformation;
@@ -86,18 +103,16 @@ void deformation_pairs(Simulation& sim, RowChunks& chunks, int c) {
   const double *gjx = rp.gjx.data(), *gjy = rp.gjy.data();
   const double* vol0 = rp.vol0.data();
   const double *ux = rp.ux.data(), *uy = rp.uy.data();
-  // M = F - I is summed in F's own arrays.
-  Particles& out = sim.particles;
-  double* const m_sum[4] = {out.fxx.data(), out.fxy.data(), out.fyx.data(), out.fyy.data()};
+  // M = F - I, xx, xy, yx, yy side by side (ReferencePairs::sums).
+  double* const sums = sim.reference.sums.data();
   const std::size_t lo = chunks.begin(c), hi = chunks.end(c);
-  for (double* m : m_sum) std::fill(m + lo, m + hi, 0.0);
-  double* const spill[4] = {chunks.spill(c, 0), chunks.spill(c, 1), chunks.spill(c, 2),
-                            chunks.spill(c, 3)};
+  std::fill(sums + 4 * lo, sums + 4 * hi, 0.0);
+  double* const spill = chunks.spill_grouped(c);
   for (std::size_t i = lo; i < hi; ++i) {
     const double uxi = ux[i], uyi = uy[i], vi = vol0[i];
     // Row i continues the sums its pairs with j < i began.
-    double mxx = m_sum[0][i], mxy = m_sum[1][i], myx = m_sum[2][i], myy = m_sum[3][i];
-    auto pairs = [&](std::uint32_t k0, std::uint32_t k1, double* const* to, std::size_t base) {
+    double mxx = sums[4 * i], mxy = sums[4 * i + 1], myx = sums[4 * i + 2], myy = sums[4 * i + 3];
+    auto pairs = [&](std::uint32_t k0, std::uint32_t k1, double* to, std::size_t base) {
       for (std::uint32_t k = k0; k < k1; ++k) {
         const std::uint32_t j = jj[k];
         const double dux = ux[j] - uxi, duy = uy[j] - uyi;
@@ -108,19 +123,16 @@ void deformation_pairs(Simulation& sim, RowChunks& chunks, int c) {
         myx += duy * ax;
         myy += duy * ay;
         const double bx = vi * gjx[k], by = vi * gjy[k];
-        const std::size_t t = j - base;
-        to[0][t] += -dux * bx;
-        to[1][t] += -dux * by;
-        to[2][t] += -duy * bx;
-        to[3][t] += -duy * by;
+        // M_j += (u_i - u_j) (x) V0_i G_ji
+        add_product(to + 4 * (j - base), Four{-dux, -dux, -duy, -duy}, Four{bx, by, bx, by});
       }
     };
-    pairs(rows[i], chunks.cross(i), m_sum, 0);       // j in this chunk
+    pairs(rows[i], chunks.cross(i), sums, 0);        // j in this chunk
     pairs(chunks.cross(i), rows[i + 1], spill, hi);  // j past it
-    m_sum[0][i] = mxx;
-    m_sum[1][i] = mxy;
-    m_sum[2][i] = myx;
-    m_sum[3][i] = myy;
+    sums[4 * i] = mxx;
+    sums[4 * i + 1] = mxy;
+    sums[4 * i + 2] = myx;
+    sums[4 * i + 3] = myy;
   }
 }
 
@@ -130,7 +142,7 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
   ReferencePairs& rp = sim.reference;
   const double* lambda_body = rp.lambda_body.data();
   const double* mu_body = rp.mu_body.data();
-  double* const m_sum[4] = {p.fxx.data(), p.fxy.data(), p.fyx.data(), p.fyy.data()};
+  const double* const m_sum = rp.sums.data();  // M = F - I (deformation_pairs)
   // Raw pointers, as in the pair loops: no reload of an array's address
   // after each store.
   double *Fxx = p.fxx.data(), *Fxy = p.fxy.data(), *Fyx = p.fyx.data(), *Fyy = p.fyy.data();
@@ -145,7 +157,7 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
       sim.contacts.rows.size() == p.n + 1 ? sim.contacts.rows.data() : nullptr;
   ContactState& touch = sim.contact_state;
   const bool normals = contact_rows && touch.normal_x.size() == p.n;
-  chunks.add_spills(c, m_sum, 4);
+  chunks.add_spills_grouped(c, rp.sums.data(), 4);
   const std::size_t lo = chunks.begin(c), hi = chunks.end(c);
   // The stress of a block of particles as one vectorised loop; then, in
   // order, the block's largest J2 (first particle on ties, as a scan finds
@@ -159,9 +171,11 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
     const std::size_t b1 = std::min(hi, b0 + kBlock);
 #pragma omp simd
     for (std::size_t i = b0; i < b1; ++i) {
-      const double fxx = 1.0 + Fxx[i], fxy = Fxy[i];
-      const double fyx = Fyx[i], fyy = 1.0 + Fyy[i];
+      const double fxx = 1.0 + m_sum[4 * i], fxy = m_sum[4 * i + 1];
+      const double fyx = m_sum[4 * i + 2], fyy = 1.0 + m_sum[4 * i + 3];
       Fxx[i] = fxx;
+      Fxy[i] = fxy;
+      Fyx[i] = fyx;
       Fyy[i] = fyy;
       // Saint Venant-Kirchhoff, plane strain (E_zz = 0).
       const int b = body[i];
@@ -277,15 +291,21 @@ double momentum_pairs(Simulation& sim, RowChunks& chunks, int c) {
   const double *cs = p.cs.data(), *rho = p.rho.data(), *mass = p.mass.data();
   const double* rho0 = p.rho0.data();
   const double *Fxx = p.fxx.data(), *Fxy = p.fxy.data(), *Fyx = p.fyx.data(), *Fyy = p.fyy.data();
-  // Sums per particle: stress share (in a itself), viscosity, hourglass.
-  double* const sum[6] = {p.ax.data(),       p.ay.data(),     rp.visc_ax.data(),
-                          rp.visc_ay.data(), rp.hg_ax.data(), rp.hg_ay.data()};
-  constexpr int kSums = kHourglass ? 6 : 4;
+  // Sums per particle: stress share and viscosity side by side (4 i + q),
+  // hourglass apart (components 4 and 5 of the spill window).
+  double* const sums = rp.sums.data();
+  double* const hg_sum[2] = {rp.hg_ax.data(), rp.hg_ay.data()};
   double dissipated = 0.0;
   const std::size_t lo = chunks.begin(c), hi = chunks.end(c);
-  for (int q = 0; q < kSums; ++q) std::fill(sum[q] + lo, sum[q] + hi, 0.0);
-  double* spill[6] = {};
-  for (int q = 0; q < kSums; ++q) spill[q] = chunks.spill(c, q);
+  std::fill(sums + 4 * lo, sums + 4 * hi, 0.0);
+  double* const spill = chunks.spill_grouped(c);
+  double* hg_spill[2] = {};
+  if constexpr (kHourglass) {
+    for (int q = 0; q < 2; ++q) {
+      std::fill(hg_sum[q] + lo, hg_sum[q] + hi, 0.0);
+      hg_spill[q] = chunks.spill(c, 4 + q);
+    }
+  }
   for (std::size_t i = lo; i < hi; ++i) {
     const double inv_rho0 = 1.0 / rho0[i];
     const double e_mod = kHourglass ? sim.material_of(i).E : 0.0;
@@ -293,10 +313,11 @@ double momentum_pairs(Simulation& sim, RowChunks& chunks, int c) {
     const double csi = cs[i], rhoi = rho[i], mi = mass[i], vi = vol0[i];
     const double pxx = Pxx[i], pxy = Pxy[i], pyx = Pyx[i], pyy = Pyy[i];
     // Row i continues the sums its pairs with j < i began.
-    double sx = sum[0][i], sy = sum[1][i], vsx = sum[2][i], vsy = sum[3][i];
-    double hsx = kHourglass ? sum[4][i] : 0.0, hsy = kHourglass ? sum[5][i] : 0.0;
+    double sx = sums[4 * i], sy = sums[4 * i + 1], vsx = sums[4 * i + 2], vsy = sums[4 * i + 3];
+    double hsx = kHourglass ? hg_sum[0][i] : 0.0, hsy = kHourglass ? hg_sum[1][i] : 0.0;
     std::uint32_t approaching = 0;
-    auto pairs = [&](std::uint32_t k0, std::uint32_t k1, double* const* to, std::size_t base) {
+    auto pairs = [&](std::uint32_t k0, std::uint32_t k1, double* to, double* const* hg_to,
+                     std::size_t base) {
       for (std::uint32_t k = k0; k < k1; ++k) {
         const std::uint32_t j = jj[k];
         const std::size_t t = j - base;
@@ -305,8 +326,7 @@ double momentum_pairs(Simulation& sim, RowChunks& chunks, int c) {
         sx += Pxx[j] * bx + Pxy[j] * by;
         sy += Pyx[j] * bx + Pyy[j] * by;
         const double ax = -vi * gix[k], ay = -vi * giy[k];  // -V0_i G_ij
-        to[0][t] += pxx * ax + pxy * ay;
-        to[1][t] += pyx * ax + pyy * ay;
+        const double share_x = pxx * ax + pxy * ay, share_y = pyx * ax + pyy * ay;
         const double dx = xi - x[j], dy = yi - y[j];
         const double dvx = vxi - vx[j], dvy = vyi - vy[j];
         const double r2 = dx * dx + dy * dy;
@@ -317,8 +337,9 @@ double momentum_pairs(Simulation& sim, RowChunks& chunks, int c) {
         const double mj = mass[j];
         vsx -= mj * pg * dx;
         vsy -= mj * pg * dy;
-        to[2][t] += mi * pg * dx;
-        to[3][t] += mi * pg * dy;
+        // j's stress share and viscosity: += share * 1 and += (m_i pg) x_ij.
+        const double mpg = mi * pg;
+        add_product(to + 4 * t, Four{share_x, share_y, mpg, mpg}, Four{1.0, 1.0, dx, dy});
         dissipated += mi * mj * pg * vr;  // >= 0: energy removed
         if constexpr (kHourglass) {
           // Ganzenmueller 2015: penalise x_ij - F_mean X_ij along the pair.
@@ -334,21 +355,21 @@ double momentum_pairs(Simulation& sim, RowChunks& chunks, int c) {
           const double fj = -0.5 * hg * e_j * vi * (1.0 / rho0[j]) * w0[k] * stretch / R2 * inv_r;
           hsx += fi * dx;
           hsy += fi * dy;
-          to[4][t] += fj * -dx;
-          to[5][t] += fj * -dy;
+          hg_to[0][t] += fj * -dx;
+          hg_to[1][t] += fj * -dy;
           dissipated -= 0.5 * (mi * fi + mj * fj) * (dvx * dx + dvy * dy);
         }
       }
     };
-    pairs(rows[i], chunks.cross(i), sum, 0);         // j in this chunk
-    pairs(chunks.cross(i), rows[i + 1], spill, hi);  // j past it
-    sum[0][i] = sx;
-    sum[1][i] = sy;
-    sum[2][i] = vsx;
-    sum[3][i] = vsy;
+    pairs(rows[i], chunks.cross(i), sums, hg_sum, 0);          // j in this chunk
+    pairs(chunks.cross(i), rows[i + 1], spill, hg_spill, hi);  // j past it
+    sums[4 * i] = sx;
+    sums[4 * i + 1] = sy;
+    sums[4 * i + 2] = vsx;
+    sums[4 * i + 3] = vsy;
     if constexpr (kHourglass) {
-      sum[4][i] = hsx;
-      sum[5][i] = hsy;
+      hg_sum[0][i] = hsx;
+      hg_sum[1][i] = hsy;
     }
     rp.approaching[i] = approaching;
   }
@@ -365,17 +386,18 @@ void accelerations_per_particle(Simulation& sim, RowChunks& chunks, int c) {
   const double *Pyx = rp.pyx.data(), *Pyy = rp.pyy.data();
   const double *sgx = rp.sgx.data(), *sgy = rp.sgy.data();
   const double* rho0 = p.rho0.data();
-  double* const sum[6] = {p.ax.data(),       p.ay.data(),     rp.visc_ax.data(),
-                          rp.visc_ay.data(), rp.hg_ax.data(), rp.hg_ay.data()};
-  constexpr int kSums = kHourglass ? 6 : 4;
-  chunks.add_spills(c, sum, kSums);
+  const double* const sums = rp.sums.data();
+  double* const hg_sum[2] = {rp.hg_ax.data(), rp.hg_ay.data()};
+  double *ax = p.ax.data(), *ay = p.ay.data();
+  chunks.add_spills_grouped(c, rp.sums.data(), 4);
+  if constexpr (kHourglass) chunks.add_spills(c, hg_sum, 2, 4);
   for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
     const double inv_rho0 = 1.0 / rho0[i];
-    const double hx = kHourglass ? sum[4][i] : 0.0, hy = kHourglass ? sum[5][i] : 0.0;
-    sum[0][i] = hx + inv_rho0 * (Pxx[i] * sgx[i] + Pxy[i] * sgy[i] + sum[0][i]);
-    sum[1][i] = hy + inv_rho0 * (Pyx[i] * sgx[i] + Pyy[i] * sgy[i] + sum[1][i]);
-    sum[0][i] += sum[2][i];
-    sum[1][i] += sum[3][i];
+    const double hx = kHourglass ? hg_sum[0][i] : 0.0, hy = kHourglass ? hg_sum[1][i] : 0.0;
+    ax[i] = hx + inv_rho0 * (Pxx[i] * sgx[i] + Pxy[i] * sgy[i] + sums[4 * i]);
+    ay[i] = hy + inv_rho0 * (Pyx[i] * sgx[i] + Pyy[i] * sgy[i] + sums[4 * i + 1]);
+    ax[i] += sums[4 * i + 2];
+    ay[i] += sums[4 * i + 3];
   }
 }
 

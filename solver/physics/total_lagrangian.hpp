@@ -42,9 +42,15 @@ struct ReferencePairs {
   // i's pairs, so its share of the momentum sum is P_i times this, with no
   // per-pair work.
   Column<double> sgx, sgy;
-  // Viscous and hourglass accelerations, summed apart from the stress share
-  // (the pair-once sums end in the same order as full rows would).
-  Column<double> visc_ax, visc_ay, hg_ax, hg_ay;
+  // Four sums per particle, side by side (4 i + q), that a pair adds to its
+  // far end as one vector: the F pass's M = F - I (xx, xy, yx, yy), then
+  // the momentum pass's stress share and viscous acceleration (x, y, x, y),
+  // summed apart so that the pair-once sums end in the same order as full
+  // rows would. Four scattered sums cost the momentum pass a quarter of its
+  // time (docs/speed-accuracy.md, tenth round).
+  Column<double> sums;
+  // Hourglass accelerations.
+  Column<double> hg_ax, hg_ay;
   // The threads' rows, cut twice: the F pass's pairs cost the same
   // everywhere, the momentum pass's do not (the viscosity's division acts on
   // approaching pairs only). The deformation cut serves the F and stress

@@ -102,9 +102,8 @@ void build_pairs(Simulation& sim, const ReferencePairs::Basis& basis) {
 void start_state(Simulation& sim) {
   ReferencePairs& rp = sim.reference;
   const std::size_t n = sim.particles.n;
-  for (auto* v : {&rp.px, &rp.py, &rp.pyx, &rp.pyy, &rp.ux, &rp.uy, &rp.visc_ax, &rp.visc_ay}) {
-    v->assign(n, 0.0);
-  }
+  for (auto* v : {&rp.px, &rp.py, &rp.pyx, &rp.pyy, &rp.ux, &rp.uy}) v->assign(n, 0.0);
+  rp.sums.assign(4 * n, 0.0);
   rp.approaching.assign(n, 0);
   rp.hg_ax.assign(rp.basis.keep_w ? n : 0, 0.0);
   rp.hg_ay.assign(rp.basis.keep_w ? n : 0, 0.0);
