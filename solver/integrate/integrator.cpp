@@ -162,7 +162,7 @@ RegionStep total_lagrangian_step(Simulation& sim, double dt) {
 #pragma omp barrier
       // Per particle: a^{n+1}, external accelerations, v^{n+1}.
       for_my_chunks(chunks, [&](int c) {
-        physics::accelerations(sim, tl, c);
+        viscous += physics::accelerations(sim, tl, c);
         for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
           damped += external_acceleration(sim.particles, i, ramp, damping, dt, contact);
         }

@@ -40,6 +40,14 @@ constexpr double kApproachingPairCost = 1.0;
 // changes: the reference pairs do not.
 constexpr long kReplanSteps = 1024;
 
+// The momentum pass counts the approaching pairs only in the step before a
+// new cut, the one whose counts the cut reads (planned_chunks is called
+// with the next step's number), not in the other 1,023 (about 1 % of the
+// gear's step on one thread).
+bool count_approaching(long step) {
+  return (step + 1) % kReplanSteps == 0;
+}
+
 // Four sums of one particle as one vector (GCC's vector extension: one
 // AVX register). A pair adds its four values to its far end with one load,
 // one fused multiply-add and one store, where four scattered sums took a
@@ -257,9 +265,9 @@ inline double viscosity_pair(double dw0, double h, double vr, double r2, double 
   return vr < 0.0 ? all : 0.0;
 }
 
-// The pair loop of the momentum equation, one instantiation with and one
-// without hourglass control: raw pointers, and no branch but the
-// viscosity's (above). Each pair once, written to both ends (RowChunks):
+// The pair loop of the momentum equation, instantiated with and without
+// hourglass control and the count of approaching pairs: raw pointers, and
+// no branch but the viscosity's (above). Each pair once, written to both ends (RowChunks):
 //   stress share  a_i += -V0_j P_j G_ji / rho0_i,  a_j += -V0_i P_i G_ij / rho0_j
 //   viscosity     a_i -= m_j Pi_ij g_ij,           a_j += m_i Pi_ij g_ij
 // (equal and opposite: momentum is conserved exactly). The own share
@@ -267,10 +275,10 @@ inline double viscosity_pair(double dw0, double h, double vr, double r2, double 
 // scalar on purpose: `omp simd` reductions over gathered neighbours cost more
 // in gathers, masks and set-up than they save (measured: 17 % slower here,
 // 2.2x slower in the F loop; docs/speed-accuracy.md).
-// Momentum loop, pass 1 for chunk c; returns the energy the viscosity and
-// hourglass control removed per unit time.
-template <bool kHourglass>
-double momentum_pairs(Simulation& sim, RowChunks& chunks, int c) {
+// Momentum loop, pass 1 for chunk c; returns the energy the hourglass
+// control removed per unit time (the viscosity's: accelerations_per_particle).
+template <bool kHourglass, bool kCount>
+double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
   Particles& p = sim.particles;
   ReferencePairs& rp = sim.reference;
   const ArtificialViscosity& av = sim.method.viscosity;
@@ -333,14 +341,13 @@ double momentum_pairs(Simulation& sim, RowChunks& chunks, int c) {
         const double vr = dvx * dx + dvy * dy;
         const double pg = viscosity_pair(dw0[k], h, vr, r2, r2 + eta2, alpha, beta,
                                          0.5 * (csi + cs[j]), 0.5 * (rhoi + rho[j]));
-        approaching += vr < 0.0 ? 1 : 0;
+        if constexpr (kCount) approaching += vr < 0.0 ? 1 : 0;
         const double mj = mass[j];
         vsx -= mj * pg * dx;
         vsy -= mj * pg * dy;
         // j's stress share and viscosity: += share * 1 and += (m_i pg) x_ij.
         const double mpg = mi * pg;
         add_product(to + 4 * t, Four{share_x, share_y, mpg, mpg}, Four{1.0, 1.0, dx, dy});
-        dissipated += mi * mj * pg * vr;  // >= 0: energy removed
         if constexpr (kHourglass) {
           // Ganzenmueller 2015: penalise x_ij - F_mean X_ij along the pair.
           const double X = x0[i] - x0[j], Y = y0[i] - y0[j];
@@ -371,15 +378,25 @@ double momentum_pairs(Simulation& sim, RowChunks& chunks, int c) {
       hg_sum[0][i] = hsx;
       hg_sum[1][i] = hsy;
     }
-    rp.approaching[i] = approaching;
+    if constexpr (kCount) rp.approaching[i] = approaching;
   }
   return dissipated;
 }
 
+template <bool kHourglass>
+double momentum_pairs(Simulation& sim, RowChunks& chunks, int c) {
+  return count_approaching(sim.step) ? momentum_pairs_of<kHourglass, true>(sim, chunks, c)
+                                     : momentum_pairs_of<kHourglass, false>(sim, chunks, c);
+}
+
 // Momentum loop, pass 2 for chunk c, per particle: the own share
 // P_i sum_j V0_j G_ij, then a = sum / rho0 plus viscosity and hourglass.
+// Returns the power the viscosity removes, -sum_i m_i v_i . a_visc_i: the
+// pairs' sum m_i m_j Pi_ij g_ij . v_ij regrouped by particle, at one
+// product a particle instead of three a pair (the same velocities: the
+// closing kick comes after).
 template <bool kHourglass>
-void accelerations_per_particle(Simulation& sim, RowChunks& chunks, int c) {
+double accelerations_per_particle(Simulation& sim, RowChunks& chunks, int c) {
   Particles& p = sim.particles;
   ReferencePairs& rp = sim.reference;
   const double *Pxx = rp.px.data(), *Pxy = rp.py.data();
@@ -389,8 +406,10 @@ void accelerations_per_particle(Simulation& sim, RowChunks& chunks, int c) {
   const double* const sums = rp.sums.data();
   double* const hg_sum[2] = {rp.hg_ax.data(), rp.hg_ay.data()};
   double *ax = p.ax.data(), *ay = p.ay.data();
+  const double *vx = p.vx.data(), *vy = p.vy.data(), *mass = p.mass.data();
   chunks.add_spills_grouped(c, rp.sums.data(), 4);
   if constexpr (kHourglass) chunks.add_spills(c, hg_sum, 2, 4);
+  double viscous = 0.0;
   for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
     const double inv_rho0 = 1.0 / rho0[i];
     const double hx = kHourglass ? hg_sum[0][i] : 0.0, hy = kHourglass ? hg_sum[1][i] : 0.0;
@@ -398,7 +417,9 @@ void accelerations_per_particle(Simulation& sim, RowChunks& chunks, int c) {
     ay[i] = hy + inv_rho0 * (Pyx[i] * sgx[i] + Pyy[i] * sgy[i] + sums[4 * i + 1]);
     ax[i] += sums[4 * i + 2];
     ay[i] += sums[4 * i + 3];
+    viscous -= mass[i] * (vx[i] * sums[4 * i + 2] + vy[i] * sums[4 * i + 3]);
   }
+  return viscous;
 }
 
 template <bool kHourglass>
@@ -409,7 +430,8 @@ void momentum(Simulation& sim, double dt) {
   {
     for_my_chunks(rows, [&](int c) { dissipated += momentum_pairs<kHourglass>(sim, rows, c); });
 #pragma omp barrier
-    for_my_chunks(rows, [&](int c) { accelerations_per_particle<kHourglass>(sim, rows, c); });
+    for_my_chunks(
+        rows, [&](int c) { dissipated += accelerations_per_particle<kHourglass>(sim, rows, c); });
   }
   sim.energy.dissipated += dt * dissipated;
 }
@@ -430,7 +452,9 @@ void stress_and_momentum(Simulation& sim, double dt) {
 #pragma omp barrier
     for_my_chunks(m_rows, [&](int c) { dissipated += momentum_pairs<kHourglass>(sim, m_rows, c); });
 #pragma omp barrier
-    for_my_chunks(m_rows, [&](int c) { accelerations_per_particle<kHourglass>(sim, m_rows, c); });
+    for_my_chunks(m_rows, [&](int c) {
+      dissipated += accelerations_per_particle<kHourglass>(sim, m_rows, c);
+    });
   }
   sim.energy.dissipated += dt * dissipated;
   gather_largest_j2(sim);
@@ -500,12 +524,9 @@ double momentum_sums(Simulation& sim, TotalLagrangianPasses& tl, int c) {
                       : momentum_pairs<false>(sim, tl.momentum, c);
 }
 
-void accelerations(Simulation& sim, TotalLagrangianPasses& tl, int c) {
-  if (tl.hourglass) {
-    accelerations_per_particle<true>(sim, tl.momentum, c);
-  } else {
-    accelerations_per_particle<false>(sim, tl.momentum, c);
-  }
+double accelerations(Simulation& sim, TotalLagrangianPasses& tl, int c) {
+  return tl.hourglass ? accelerations_per_particle<true>(sim, tl.momentum, c)
+                      : accelerations_per_particle<false>(sim, tl.momentum, c);
 }
 
 void total_lagrangian_forces(Simulation& sim, double dt) {

@@ -121,10 +121,11 @@ void stress_from_deformation(Simulation& sim, TotalLagrangianPasses& tl, int c);
 // sim.largest_j2, for this step.
 void gather_largest_j2(Simulation& sim);
 // Pass 3: the pair sums of the momentum equation; returns the power the
-// viscosity and hourglass control remove [W/m].
+// hourglass control removes [W/m].
 double momentum_sums(Simulation& sim, TotalLagrangianPasses& tl, int c);
-// Pass 4: a from the pair sums, per particle.
-void accelerations(Simulation& sim, TotalLagrangianPasses& tl, int c);
+// Pass 4: a from the pair sums, per particle; returns the power the
+// viscosity removes [W/m].
+double accelerations(Simulation& sim, TotalLagrangianPasses& tl, int c);
 
 // F from current positions, then P and the Cauchy stress for output.
 void total_lagrangian_stress(Simulation& sim);
