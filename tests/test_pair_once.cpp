@@ -118,8 +118,12 @@ TEST(PairOnce, ForcesEqualFullRowSums) {
       f[3] += vj * duy * e.gy;
       double gjx = 0, gjy = 0;
       g_of(e.j, i, gjx, gjy);
-      a[0] += vj * (rp.px[i] * e.gx + rp.py[i] * e.gy - rp.px[e.j] * gjx - rp.py[e.j] * gjy);
-      a[1] += vj * (rp.pyx[i] * e.gx + rp.pyy[i] * e.gy - rp.pyx[e.j] * gjx - rp.pyy[e.j] * gjy);
+      // The step keeps V0 P (ReferencePairs::px).
+      const double vi = rp.vol0[i];
+      a[0] += vj * ((rp.px[i] * e.gx + rp.py[i] * e.gy) / vi -
+                    (rp.px[e.j] * gjx + rp.py[e.j] * gjy) / vj);
+      a[1] += vj * ((rp.pyx[i] * e.gx + rp.pyy[i] * e.gy) / vi -
+                    (rp.pyx[e.j] * gjx + rp.pyy[e.j] * gjy) / vj);
     }
     worst_f = std::max({worst_f, std::abs(f[0] - p.fxx[i]), std::abs(f[1] - p.fxy[i]),
                         std::abs(f[2] - p.fyx[i]), std::abs(f[3] - p.fyy[i])});

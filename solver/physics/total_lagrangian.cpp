@@ -158,6 +158,7 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
   double *pressure = p.p.data(), *Sxx = p.sxx.data(), *Syy = p.syy.data();
   double *Szz = p.szz.data(), *Sxy = p.sxy.data(), *rho = p.rho.data();
   const double *rho0 = p.rho0.data(), *surf_depth = p.surf_depth.data();
+  const double* vol0 = rp.vol0.data();
   const std::int32_t* body = p.body.data();
   // Contact candidates (penalty contact only), refreshed before this step's
   // forces, and their normals' scratch (sized when the list was built).
@@ -197,10 +198,12 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
       // P = F S
       const double pxx = fxx * sxx + fxy * sxy, pxy = fxx * sxy + fxy * syy;
       const double pyx = fyx * sxx + fyy * sxy, pyy = fyx * sxy + fyy * syy;
-      Pxx[i] = pxx;
-      Pxy[i] = pxy;
-      Pyx[i] = pyx;
-      Pyy[i] = pyy;
+      // Kept times the reference volume (ReferencePairs::px).
+      const double v0 = vol0[i];
+      Pxx[i] = v0 * pxx;
+      Pxy[i] = v0 * pxy;
+      Pyx[i] = v0 * pyx;
+      Pyy[i] = v0 * pyy;
       // Cauchy sigma = F S F^T / J (sigma_zz = S_zz / J) for output.
       const double inv_jac = 1.0 / (fxx * fyy - fxy * fyx);
       const double cxx = (pxx * fxx + pxy * fxy) * inv_jac;
@@ -319,7 +322,7 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
     const double e_mod = kHourglass ? sim.material_of(i).E : 0.0;
     const double xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
     const double csi = cs[i], rhoi = rho[i], mi = mass[i], vi = vol0[i];
-    const double pxx = Pxx[i], pxy = Pxy[i], pyx = Pyx[i], pyy = Pyy[i];
+    const double qxx = Pxx[i], qxy = Pxy[i], qyx = Pyx[i], qyy = Pyy[i];  // V0_i P_i
     // Row i continues the sums its pairs with j < i began.
     double sx = sums[4 * i], sy = sums[4 * i + 1], vsx = sums[4 * i + 2], vsy = sums[4 * i + 3];
     double hsx = kHourglass ? hg_sum[0][i] : 0.0, hsy = kHourglass ? hg_sum[1][i] : 0.0;
@@ -329,12 +332,11 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
       for (std::uint32_t k = k0; k < k1; ++k) {
         const std::uint32_t j = jj[k];
         const std::size_t t = j - base;
-        const double vj = vol0[j];
-        const double bx = -vj * gjx[k], by = -vj * gjy[k];  // -V0_j G_ji
-        sx += Pxx[j] * bx + Pxy[j] * by;
-        sy += Pyx[j] * bx + Pyy[j] * by;
-        const double ax = -vi * gix[k], ay = -vi * giy[k];  // -V0_i G_ij
-        const double share_x = pxx * ax + pxy * ay, share_y = pyx * ax + pyy * ay;
+        const double bx = gjx[k], by = gjy[k];  // G_ji
+        sx -= Pxx[j] * bx + Pxy[j] * by;        // V0_j P_j G_ji
+        sy -= Pyx[j] * bx + Pyy[j] * by;
+        const double ax = gix[k], ay = giy[k];  // G_ij
+        const double share_x = -(qxx * ax + qxy * ay), share_y = -(qyx * ax + qyy * ay);
         const double dx = xi - x[j], dy = yi - y[j];
         const double dvx = vxi - vx[j], dvy = vyi - vy[j];
         const double r2 = dx * dx + dy * dy;
@@ -351,6 +353,7 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
         if constexpr (kHourglass) {
           // Ganzenmueller 2015: penalise x_ij - F_mean X_ij along the pair.
           const double X = x0[i] - x0[j], Y = y0[i] - y0[j];
+          const double vj = vol0[j];
           const double fxx = 0.5 * (Fxx[i] + Fxx[j]), fxy = 0.5 * (Fxy[i] + Fxy[j]);
           const double fyx = 0.5 * (Fyx[i] + Fyx[j]), fyy = 0.5 * (Fyy[i] + Fyy[j]);
           const double ex = dx - (fxx * X + fxy * Y), ey = dy - (fyx * X + fyy * Y);

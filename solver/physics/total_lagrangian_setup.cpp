@@ -93,6 +93,11 @@ void build_pairs(Simulation& sim, const ReferencePairs::Basis& basis) {
         rp.sgy[j] += rp.vol0[i] * rp.gjy[k];
       }
     }
+    // Divided by V0_i: the step keeps P times the volume (ReferencePairs::px).
+    for (std::size_t i = 0; i < n; ++i) {
+      rp.sgx[i] /= rp.vol0[i];
+      rp.sgy[i] /= rp.vol0[i];
+    }
   });
   rp.basis = basis;
 }
