@@ -4,9 +4,11 @@
 
 #include <cmath>
 
+#include "solver/core/simulation.hpp"
 #include "solver/diagnostics/energy.hpp"
 #include "solver/integrate/integrator.hpp"
 #include "solver/job/job.hpp"
+#include "solver/physics/contact.hpp"
 #include "solver/physics/contact_hertz.hpp"
 #include "solver/physics/contact_seed_penalty.hpp"
 #include "solver/run/runner.hpp"
@@ -110,6 +112,62 @@ TEST(Contact, StiffContactBoundsTheTimeStep) {
   EXPECT_EQ(stiff.time_step.limited_by, "contact stiffness");
   const PreparedJob soft = prepare_job(bars("seed_penalty", "total_lagrangian"), 1);
   EXPECT_LT(stiff.time_step.dt_limit, soft.time_step.dt_limit);
+}
+
+// The surface model's contact list holds only particles with a surface
+// within reach (an interior particle's pairs were skipped each step), and
+// the pair loop visits only particles with partners. The forces must be
+// those of the full list, bit for bit, with every other particle's contact
+// acceleration zero. The Hertz cylinder pressed into its block: pairs
+// active from the first step.
+TEST(Contact, SurfaceListOfSurfaceParticlesGivesTheFullListsForces) {
+  const json job = {{"scene",
+                     {{"type", "hertz"},
+                      {"cap_height_over_a", 4},
+                      {"block_depth_over_a", 4},
+                      {"block_half_width_over_a", 4}}},
+                    {"method", {{"contact", {{"model", "surface_penalty"}}}}}};
+  PreparedJob prepared = prepare_job(job, 2);
+  Simulation sim = prepared.scene.sim;
+  integrate::initialise(sim);
+  for (int s = 0; s < 300; ++s) integrate::step(sim);
+  ASSERT_GT(sim.contact_state.active_pairs, 0);
+  const Particles& p = sim.particles;
+  const NeighbourList& list = sim.contacts;
+  std::size_t interior = 0, candidates = 0;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    const bool partners = list.rows[i] != list.rows[i + 1];
+    if (!std::isfinite(p.surf_depth[i])) {
+      ++interior;
+      EXPECT_FALSE(partners) << "interior particle " << i << " in the contact list";
+    }
+    candidates += partners ? 1 : 0;
+    if (!partners) {
+      ASSERT_EQ(p.contact_ax[i], 0.0) << i;
+      ASSERT_EQ(p.contact_ay[i], 0.0) << i;
+    }
+  }
+  ASSERT_GT(interior, 0u);
+  ASSERT_EQ(sim.contact_state.candidates.size(), candidates);
+
+  // The same step's contact pass on the full list (every particle of the
+  // other body within reach) and on every particle.
+  Simulation full = sim;
+  full.contacts.build(full.particles, sim.contacts.cutoff(), PairSelection::OtherBody,
+                      /*reference=*/false, 1);
+  full.contact_state.prepared_build = 0;
+  physics::prepare_contact(full);
+  ASSERT_GT(full.contacts.entries(), sim.contacts.entries());
+  physics::ContactTally a, b;
+  physics::contact_pairs(sim, sim.dt, a);
+  physics::contact_pairs(full, sim.dt, b);
+  ASSERT_GT(a.active, 0);
+  EXPECT_EQ(a.active, b.active);
+  EXPECT_EQ(a.stored, b.stored);
+  for (std::size_t i = 0; i < p.n; ++i) {
+    ASSERT_EQ(sim.particles.contact_ax[i], full.particles.contact_ax[i]) << i;
+    ASSERT_EQ(sim.particles.contact_ay[i], full.particles.contact_ay[i]) << i;
+  }
 }
 
 }  // namespace

@@ -1,10 +1,12 @@
 #include "solver/integrate/integrator.hpp"
 
 #include <malloc.h>
+#include <omp.h>
 
 #include <cmath>
 #include <exception>
 #include <sstream>
+#include <type_traits>
 
 #include "solver/core/simulation.hpp"
 #include "solver/diagnostics/guard.hpp"
@@ -53,24 +55,38 @@ void refresh_neighbours(Simulation& sim, bool contacts_moved) {
                              ? (2.0 * scenes::kSurfaceReachOverDx + 1.0) * sim.discretization.dx
                              : sim.contact.r0_over_dx * sim.discretization.dx;
     sim.contacts.build(sim.particles, reach + skin, PairSelection::OtherBody,
-                       /*reference=*/false, sim.threads);
-    physics::prepare_contact(sim);  // the normals' scratch, before any stress pass
+                       /*reference=*/false, sim.threads, physics::contact_eligible(sim));
+    physics::prepare_contact(sim);  // normals' scratch and candidates, before any stress pass
   }
 }
 
-// Accelerations from outside the bodies' own stress on particle i: applied
-// loads, (quasi-static scenes) mass-proportional damping and, with
+// Accelerations from outside the bodies' own stress on particles lo .. hi:
+// applied loads, (quasi-static scenes) mass-proportional damping and, with
 // `contact`, the contact accelerations of this step. Returns the energy the
-// damping removed over dt.
-inline double external_acceleration(Particles& p, std::size_t i, double ramp, double c, double dt,
-                                    bool contact) {
-  p.ext_ax[i] = ramp * p.load_ax[i] - c * p.vx[i];
-  p.ext_ay[i] = ramp * p.load_ay[i] - c * p.vy[i];
+// damping removed over dt. One vector loop: raw pointers, and the energy
+// summed as a simd reduction (a scalar sum kept the loop scalar).
+double external_accelerations(Particles& p, std::size_t lo, std::size_t hi, double ramp, double c,
+                              double dt, bool contact) {
+  double *ext_ax = p.ext_ax.data(), *ext_ay = p.ext_ay.data();
+  const double *load_ax = p.load_ax.data(), *load_ay = p.load_ay.data();
+  const double *vx = p.vx.data(), *vy = p.vy.data(), *mass = p.mass.data();
+  const double *contact_ax = p.contact_ax.data(), *contact_ay = p.contact_ay.data();
+  double dissipated = 0.0;
+  auto run = [&](auto with_contact) {
+#pragma omp simd reduction(+ : dissipated)
+    for (std::size_t i = lo; i < hi; ++i) {
+      const double ax = ramp * load_ax[i] - c * vx[i], ay = ramp * load_ay[i] - c * vy[i];
+      ext_ax[i] = with_contact ? ax + contact_ax[i] : ax;
+      ext_ay[i] = with_contact ? ay + contact_ay[i] : ay;
+      dissipated += c * mass[i] * (vx[i] * vx[i] + vy[i] * vy[i]) * dt;
+    }
+  };
   if (contact) {
-    p.ext_ax[i] += p.contact_ax[i];
-    p.ext_ay[i] += p.contact_ay[i];
+    run(std::true_type{});
+  } else {
+    run(std::false_type{});
   }
-  return c * p.mass[i] * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i]) * dt;
+  return dissipated;
 }
 
 void external_forces(Simulation& sim, double dt) {
@@ -78,9 +94,10 @@ void external_forces(Simulation& sim, double dt) {
   const std::size_t n = p.n;
   const double c = sim.damping_1_s, ramp = load_ramp(sim);
   double dissipated = 0.0;
-#pragma omp parallel for num_threads(sim.threads) schedule(static) reduction(+ : dissipated)
-  for (std::size_t i = 0; i < n; ++i) {
-    dissipated += external_acceleration(p, i, ramp, c, dt, false);
+#pragma omp parallel num_threads(sim.threads) reduction(+ : dissipated)
+  {
+    const std::size_t team = omp_get_num_threads(), me = omp_get_thread_num();
+    dissipated += external_accelerations(p, n * me / team, n * (me + 1) / team, ramp, c, dt, false);
   }
   sim.energy.dissipated += dissipated;
   if (penalty_contact(sim)) physics::contact_forces(sim, dt);  // adds to ext
@@ -163,9 +180,8 @@ RegionStep total_lagrangian_step(Simulation& sim, double dt) {
       // Per particle: a^{n+1}, external accelerations, v^{n+1}.
       for_my_chunks(chunks, [&](int c) {
         viscous += physics::accelerations(sim, tl, c);
-        for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
-          damped += external_acceleration(sim.particles, i, ramp, damping, dt, contact);
-        }
+        damped += external_accelerations(sim.particles, chunks.begin(c), chunks.end(c), ramp,
+                                         damping, dt, contact);
         power += closing_kick_particles(sim, 0.5 * dt, chunks.begin(c), chunks.end(c));
       });
     }

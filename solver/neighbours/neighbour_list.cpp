@@ -23,7 +23,7 @@ bool selected(PairSelection s, int body_i, int body_j) {
 }  // namespace
 
 void NeighbourList::build(const Particles& p, double cutoff, PairSelection selection,
-                          bool reference, int threads) {
+                          bool reference, int threads, const std::uint8_t* eligible) {
   const std::size_t n = p.n;
   const double* px = reference ? p.x0.data() : p.x.data();
   const double* py = reference ? p.y0.data() : p.y.data();
@@ -32,10 +32,12 @@ void NeighbourList::build(const Particles& p, double cutoff, PairSelection selec
   const double c2 = cutoff * cutoff;
 
   auto scan = [&](std::size_t i, auto&& emit) {
+    if (eligible && !eligible[i]) return;
     const double xi = px[i], yi = py[i];
     const int bi = p.body[i];
     grid_.for_each_near(xi, yi, [&](std::uint32_t k) {
       if (k == i || (reference && k < i) || !selected(selection, bi, p.body[k])) return;
+      if (eligible && !eligible[k]) return;
       const double dx = xi - px[k], dy = yi - py[k];
       if (dx * dx + dy * dy < c2) emit(k);
     });

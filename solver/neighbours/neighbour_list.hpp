@@ -39,9 +39,11 @@ class NeighbourList {
 
   // Builds from the current positions, or from the reference positions when
   // `reference` is set: total-Lagrangian lists, which never change, hold each
-  // unordered pair once (row i only j > i) and no W' cache.
+  // unordered pair once (row i only j > i) and no W' cache. With `eligible`,
+  // particles flagged 0 there get an empty row and appear in no other row
+  // (contact candidates: interior particles, which never touch).
   void build(const Particles& p, double cutoff, PairSelection selection, bool reference,
-             int threads);
+             int threads, const std::uint8_t* eligible = nullptr);
   bool needs_rebuild(const Particles& p) const;
   // needs_rebuild for particles lo .. hi at (x, y), for a pass that has the
   // positions at hand: how many moved beyond half the skin. Only for lists

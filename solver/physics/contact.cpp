@@ -81,10 +81,33 @@ ContactTally& ContactTally::operator+=(const ContactTally& o) {
   return *this;
 }
 
+const std::uint8_t* contact_eligible(Simulation& sim) {
+  if (sim.contact.model != ContactModel::Surface) return nullptr;
+  const Particles& p = sim.particles;
+  std::vector<std::uint8_t>& eligible = sim.contact_state.eligible;
+  if (eligible.size() != p.n) {  // depths never change: once per run
+    eligible.resize(p.n);
+    for (std::size_t i = 0; i < p.n; ++i) eligible[i] = std::isfinite(p.surf_depth[i]) ? 1 : 0;
+  }
+  return eligible.data();
+}
+
 void prepare_contact(Simulation& sim) {
-  if (sim.contact.model != ContactModel::Surface) return;
-  sim.contact_state.normal_x.resize(sim.particles.n);  // allocates once
-  sim.contact_state.normal_y.resize(sim.particles.n);
+  Particles& p = sim.particles;
+  ContactState& state = sim.contact_state;
+  const NeighbourList& nl = sim.contacts;
+  if (state.prepared_build == nl.builds()) return;
+  if (sim.contact.model == ContactModel::Surface) {
+    state.normal_x.resize(p.n);  // allocates once
+    state.normal_y.resize(p.n);
+  }
+  state.candidates.clear();  // keeps its capacity
+  for (std::size_t i = 0; i < p.n; ++i) {
+    if (nl.rows[i] != nl.rows[i + 1]) state.candidates.push_back(static_cast<std::uint32_t>(i));
+  }
+  std::fill(p.contact_ax.begin(), p.contact_ax.end(), 0.0);
+  std::fill(p.contact_ay.begin(), p.contact_ay.end(), 0.0);
+  state.prepared_build = nl.builds();
 }
 
 void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
@@ -95,9 +118,11 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
   const bool surface = c.model == ContactModel::Surface;
   const double* normal_x = sim.contact_state.normal_x.data();
   const double* normal_y = sim.contact_state.normal_y.data();
-  const std::size_t n = p.n;
+  const std::uint32_t* candidates = sim.contact_state.candidates.data();
+  const std::size_t count = sim.contact_state.candidates.size();
 #pragma omp for schedule(static) nowait
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t a = 0; a < count; ++a) {
+    const std::size_t i = candidates[a];
     const Material& mi = sim.material_of(i);
     const double vi = p.mass[i] / p.rho[i];
     double fx = 0.0, fy = 0.0;
@@ -199,7 +224,8 @@ void contact_forces(Simulation& sim, double dt) {
       }
     }
     contact_pairs(sim, dt, tally);
-    // The same static split as the pair loop: each thread adds what it wrote.
+    // The pair loop splits the candidates, this loop all particles.
+#pragma omp barrier
 #pragma omp for schedule(static) nowait
     for (std::size_t i = 0; i < n; ++i) {
       p.ext_ax[i] += p.contact_ax[i];

@@ -46,6 +46,15 @@ struct ContactState {
   // turned by its material rotation, computed once per step rather than per
   // pair (it was a sine and a cosine per pair end).
   Column<double> normal_x, normal_y;
+  // The surface model's mask for the contact list: 1 for particles with a
+  // surface within reach (finite depth), the only ones that can touch.
+  std::vector<std::uint8_t> eligible;
+  // Particles with a non-empty row in the contact list, in order, refreshed
+  // with each build of the list (prepare_contact). The pair loop visits only
+  // these, a quarter of the gear's particles; every other particle's contact
+  // acceleration stays zero.
+  std::vector<std::uint32_t> candidates;
+  std::size_t prepared_build = 0;  // the list's build these belong to
 };
 
 namespace physics {
@@ -75,8 +84,14 @@ struct ContactTally {
 #pragma omp declare reduction(+ : ContactTally : omp_out += omp_in) \
     initializer(omp_priv = ContactTally{})
 
-// Sizes the surface model's normals (outside any parallel region; a no-op
-// after the first call). Called when the contact list is built.
+// The mask for the contact list's build (NeighbourList::build): with the
+// surface model only particles with a surface within reach may pair (an
+// interior particle's pairs were skipped each step, half the list's
+// entries in the gear); nullptr (all) otherwise.
+const std::uint8_t* contact_eligible(Simulation& sim);
+// After each build of the contact list, outside any parallel region: sizes
+// the surface model's normals, lists the candidates and zeroes every
+// particle's contact acceleration. A no-op if done for this build already.
 void prepare_contact(Simulation& sim);
 // Surface model: particle i's outward normal turned by its material
 // rotation, given as its cosine c and sine s, into the state's scratch. The
@@ -90,9 +105,10 @@ inline void turn_surface_normal(const Particles& p, ContactState& state, std::si
                                 double s) {
   turn_normal(c, s, p.surf_nx[i], p.surf_ny[i], state.normal_x[i], state.normal_y[i]);
 }
-// The pair loop, as a worksharing loop without its closing barrier (call it
-// from inside a parallel region): contact_ax, contact_ay of every particle,
-// and the calling thread's share of the totals. Reads positions, velocities,
+// The pair loop, as a worksharing loop over the candidates without its
+// closing barrier (call it from inside a parallel region, after
+// prepare_contact): contact_ax, contact_ay of every candidate, and the
+// calling thread's share of the totals. Reads positions, velocities,
 // density and the turned normals.
 void contact_pairs(Simulation& sim, double dt, ContactTally& tally);
 // The totals of all threads into sim.contact_state and the energy ledger.

@@ -284,10 +284,11 @@ inline double viscosity_pair(double dw0, double h, double vr, double r2, double 
 // 2.2x slower in the F loop; docs/speed-accuracy.md).
 // Momentum loop, pass 1 for chunk c; returns the energy the hourglass
 // control removed per unit time (the viscosity's: accelerations_per_particle).
-template <bool kHourglass, bool kCount>
+template <bool kHourglass, bool kCount, bool kUniform>
 double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
   Particles& p = sim.particles;
   ReferencePairs& rp = sim.reference;
+  const double mass_all = rp.uniform.mass, cs_all = rp.uniform.cs;
   const ArtificialViscosity& av = sim.method.viscosity;
   const double h = sim.h();
   const double hg = sim.method.hourglass.coefficient;
@@ -345,10 +346,11 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
         const double dvx = vxi - vx[j], dvy = vyi - vy[j];
         const double r2 = dx * dx + dy * dy;
         const double vr = dvx * dx + dvy * dy;
-        const double pg = viscosity_pair(dw0[k], h, vr, r2, r2 + eta2, alpha, beta,
-                                         0.5 * (csi + cs[j]), 0.5 * (rhoi + rho[j]));
+        const double cs_mean = kUniform ? cs_all : 0.5 * (csi + cs[j]);
+        const double pg = viscosity_pair(dw0[k], h, vr, r2, r2 + eta2, alpha, beta, cs_mean,
+                                         0.5 * (rhoi + rho[j]));
         if constexpr (kCount) approaching += vr < 0.0 ? 1 : 0;
-        const double mj = mass[j];
+        const double mj = kUniform ? mass_all : mass[j];
         vsx -= mj * pg * dx;
         vsy -= mj * pg * dy;
         // j's stress share and viscosity: += share * 1 and += (m_i pg) x_ij.
@@ -392,8 +394,13 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
 
 template <bool kHourglass>
 double momentum_pairs(Simulation& sim, RowChunks& chunks, int c) {
-  return count_approaching(sim.step) ? momentum_pairs_of<kHourglass, true>(sim, chunks, c)
-                                     : momentum_pairs_of<kHourglass, false>(sim, chunks, c);
+  const bool count = count_approaching(sim.step);
+  if (sim.reference.uniform.all) {
+    return count ? momentum_pairs_of<kHourglass, true, true>(sim, chunks, c)
+                 : momentum_pairs_of<kHourglass, false, true>(sim, chunks, c);
+  }
+  return count ? momentum_pairs_of<kHourglass, true, false>(sim, chunks, c)
+               : momentum_pairs_of<kHourglass, false, false>(sim, chunks, c);
 }
 
 // Momentum loop, pass 2 for chunk c, per particle: the own share
@@ -417,7 +424,11 @@ double accelerations_per_particle(Simulation& sim, RowChunks& chunks, int c) {
   chunks.add_spills_grouped(c, rp.sums.data(), 4);
   if constexpr (kHourglass) chunks.add_spills(c, hg_sum, 2, 4);
   double viscous = 0.0;
-  for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
+  const std::size_t lo = chunks.begin(c), hi = chunks.end(c);
+  // A vector loop: the power summed as a simd reduction (a scalar sum kept
+  // the loop, and its division, scalar).
+#pragma omp simd reduction(+ : viscous)
+  for (std::size_t i = lo; i < hi; ++i) {
     const double inv_rho0 = 1.0 / rho0[i];
     const double hx = kHourglass ? hg_sum[0][i] : 0.0, hy = kHourglass ? hg_sum[1][i] : 0.0;
     ax[i] = hx + inv_rho0 * (Pxx[i] * sgx[i] + Pxy[i] * sgy[i] + sums[4 * i]);

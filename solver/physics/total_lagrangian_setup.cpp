@@ -112,6 +112,15 @@ void start_state(Simulation& sim) {
   rp.approaching.assign(n, 0);
   rp.hg_ax.assign(rp.basis.keep_w ? n : 0, 0.0);
   rp.hg_ay.assign(rp.basis.keep_w ? n : 0, 0.0);
+  const Particles& p = sim.particles;
+  rp.uniform = {};
+  if (n > 0) {
+    bool all = true;
+    for (std::size_t i = 0; i < n; ++i) {
+      all = all && p.mass[i] == p.mass[0] && p.cs[i] == p.cs[0];
+    }
+    rp.uniform = {all, p.mass[0], p.cs[0]};
+  }
   // Planned for these rows at the first pair loop.
   rp.deformation_chunks = RowChunks();
   rp.momentum_chunks = RowChunks();
