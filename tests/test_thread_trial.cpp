@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
+#include "solver/integrate/integrator.hpp"
 #include "solver/job/job.hpp"
 #include "solver/run/runner.hpp"
 #include "solver/run/thread_trial.hpp"
@@ -56,6 +58,7 @@ TEST(ThreadTrial, ARunAfterATrialIsTheRunOfTheChosenCount) {
   PreparedJob tried = prepare_job(kPlate, 0, 2);
   tried.threads_by = "trial";  // the plate is too short to be tried by default
   tried.trial_threads = 2;
+  tried.retrial_every_s = 1e9;  // the first trial only (the next test repeats it)
   const RunResult a = run_job(tried);
   ASSERT_EQ(a.status, "completed") << a.message;
   ASSERT_TRUE(a.summary.contains("thread_trial"));
@@ -72,6 +75,49 @@ TEST(ThreadTrial, ARunAfterATrialIsTheRunOfTheChosenCount) {
   EXPECT_EQ(tried.scene.sim.particles.vy, told.scene.sim.particles.vy);
   EXPECT_EQ(a.history.to_csv(), b.history.to_csv());
   EXPECT_EQ(a.summary.at("max_von_mises_Pa"), b.summary.at("max_von_mises_Pa"));
+}
+
+// The trial repeated during the run (after every 64 steps here) times
+// copies of the running scene: the run is the run of its switches, bit for
+// bit, replayed by setting the counts at the listed steps. Whether and
+// where it switches depends on the machine's load and is not asserted.
+TEST(ThreadTrial, ARunRepeatingItsTrialIsTheRunOfItsSwitches) {
+  PreparedJob tried = prepare_job(kPlate, 0, 2);
+  tried.threads_by = "trial";
+  tried.trial_threads = 2;
+  tried.retrial_every_s = 0.0;
+  const RunResult a = run_job(tried);
+  ASSERT_EQ(a.status, "completed") << a.message;
+  const json& trial = a.summary.at("thread_trial");
+  const json& switches = trial.at("switches");
+  ASSERT_TRUE(switches.is_array());
+  std::int64_t last = 0;
+  int threads = trial.at("chosen").get<int>();
+  for (const json& w : switches) {
+    const std::int64_t step = w.at("step").get<std::int64_t>();
+    EXPECT_GT(step, last);
+    EXPECT_LE(step, tried.steps);
+    EXPECT_NE(w.at("threads").get<int>(), threads) << "a switch to the count it had";
+    EXPECT_EQ(w.at("us_per_step").size(), 2u);
+    threads = w.at("threads").get<int>();
+    last = step;
+  }
+  EXPECT_EQ(a.summary.at("threads").get<int>(), threads);
+  ::testing::Test::RecordProperty("switches", static_cast<int>(switches.size()));
+
+  PreparedJob replay = prepare_job(kPlate, trial.at("chosen").get<int>());
+  Simulation& sim = replay.scene.sim;
+  integrate::initialise(sim);
+  std::size_t next = 0;
+  for (std::int64_t s = 1; s <= replay.steps; ++s) {
+    if (next < switches.size() && switches[next].at("step").get<std::int64_t>() == s) {
+      sim.threads = switches[next++].at("threads").get<int>();
+    }
+    integrate::step(sim);
+  }
+  EXPECT_EQ(tried.scene.sim.particles.x, sim.particles.x);
+  EXPECT_EQ(tried.scene.sim.particles.vy, sim.particles.vy);
+  EXPECT_EQ(tried.scene.sim.particles.sxx, sim.particles.sxx);
 }
 
 }  // namespace

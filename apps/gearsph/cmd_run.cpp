@@ -39,6 +39,16 @@ std::string trial_note(const nlohmann::json& summary) {
                   t.at("us_per_step")[k].get<double>(), k ? "" : " a step");
     note += part;
   }
+  // The trial repeated during the run (run/thread_trial.hpp).
+  const nlohmann::json& switches = t.value("switches", nlohmann::json::array());
+  if (!switches.empty()) {
+    char part[96];
+    const nlohmann::json& last = switches.back();
+    std::snprintf(part, sizeof part, "; %zu switch%s, the last at step %lld to %d", switches.size(),
+                  switches.size() == 1 ? "" : "es", last.at("step").get<long long>(),
+                  last.at("threads").get<int>());
+    note += part;
+  }
   return note + ")";
 }
 

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "solver/integrate/time_step.hpp"
+#include "solver/run/thread_trial.hpp"
 #include "solver/scene/scene.hpp"
 
 namespace gearsph {
@@ -46,6 +47,10 @@ struct PreparedJob {
   // on a copy of the scene and runs on the fastest (run/thread_trial.hpp).
   std::string threads_by = "size";
   int trial_threads = 0;
+  // For "trial": the trial is repeated on a copy of the running scene every
+  // so many seconds of the run, and the run switches to its new choice
+  // (run/thread_trial.hpp, kRetrialSeconds); <= 0: after every 64 steps.
+  double retrial_every_s = kRetrialSeconds;
 };
 
 // Validates, builds the scene, chooses dt. `threads` > 0: exactly that many

@@ -79,10 +79,23 @@ RunResult run_job(PreparedJob& job, RunObserver* observer) {
   const auto start = Clock::now();
   auto wall = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   ThreadTrial trial;
+  nlohmann::json switches = nlohmann::json::array();  // the repeated trials' switches
+  double next_trial_s = 0.0;
   if (job.threads_by == "trial") {
     trial = trial_threads(sim, job.trial_threads);
     sim.threads = trial.chosen;
+    next_trial_s = wall() + job.retrial_every_s;
   }
+  // The trial again on a copy of the run as it is now (thread_trial.hpp);
+  // from the next step on, its choice.
+  auto retrial = [&](std::int64_t s) {
+    const ThreadTrial again = trial_threads(sim, job.trial_threads);
+    next_trial_s = wall() + job.retrial_every_s;
+    if (again.diverged || again.chosen == sim.threads) return;
+    sim.threads = again.chosen;
+    switches.push_back(
+        {{"step", s + 1}, {"threads", again.chosen}, {"us_per_step", again.us_per_step}});
+  };
   if (observer) observer->on_start(job);
   auto last_progress = Clock::now();
 
@@ -109,6 +122,9 @@ RunResult run_job(PreparedJob& job, RunObserver* observer) {
         observer->on_snapshot(sim, frame++);
       }
       result.steps_done = s;
+      if ((s & 63) == 0 && job.threads_by == "trial" && s < job.steps && wall() >= next_trial_s) {
+        retrial(s);
+      }
       if ((s & 63) == 0 && observer) {
         if (observer->cancelled()) {
           result.status = "cancelled";
@@ -140,7 +156,9 @@ RunResult run_job(PreparedJob& job, RunObserver* observer) {
   result.summary["threads_by"] = job.threads_by;
   if (!trial.threads.empty()) {
     result.summary["thread_trial"] = {{"threads", trial.threads},
-                                      {"us_per_step", trial.us_per_step}};
+                                      {"us_per_step", trial.us_per_step},
+                                      {"chosen", trial.chosen},
+                                      {"switches", switches}};
   }
   result.summary["health"] = health.report();
   result.summary["warnings"] = health.warnings();

@@ -63,6 +63,7 @@ ThreadTrial trial_threads(const Simulation& sim, int most) {
     // The run will meet the same divergence and report it; one thread is as
     // good as any for that.
     trial.chosen = 1;
+    trial.diverged = true;
     return trial;
   }
   // The largest count that beats every smaller one by the margin.

@@ -8,6 +8,14 @@
 //
 // The trial steps a copy: the run itself starts from the untouched scene, so
 // its results are those of a run told the chosen count from the start.
+//
+// A trial of ~40 ms that falls in a spell of load chooses for the whole run:
+// the paper's case once took one thread and 88 s instead of ~55 s
+// (docs/speed-accuracy.md, eleventh round). So a run repeats the trial, on a
+// copy of its current state, every kRetrialSeconds, and switches to the new
+// choice. A run without a switch is still that of a run told its count from
+// the start; each switch changes the round-off from there on (the threads'
+// sums meet in another order), and the summary lists the switches.
 #include <vector>
 
 #include "solver/core/simulation.hpp"
@@ -18,7 +26,11 @@ struct ThreadTrial {
   std::vector<int> threads;         // the counts tried, ascending, from 1
   std::vector<double> us_per_step;  // the best of the rounds at each count
   int chosen = 1;
+  bool diverged = false;  // the copy diverged: `chosen` is 1 by default, not by timing
 };
+
+// How often a run repeats the trial: ~0.5 % of the run at ~50 ms a trial.
+inline constexpr double kRetrialSeconds = 10.0;
 
 // Tries 1, 2, 4, ... and `most` threads (most >= 1). A count is kept only if
 // it beats every smaller one by kTrialMargin: a second core spent for a
