@@ -51,7 +51,7 @@ struct ContactState {
   std::vector<std::uint8_t> eligible;
   // Particles with a non-empty row in the contact list, in order, refreshed
   // with each build of the list (prepare_contact). The pair loop visits only
-  // these, a quarter of the gear's particles; every other particle's contact
+  // these, a sixth of the gear's particles; every other particle's contact
   // acceleration stays zero.
   std::vector<std::uint32_t> candidates;
   std::size_t prepared_build = 0;  // the list's build these belong to
