@@ -120,5 +120,23 @@ TEST(ThreadTrial, ARunRepeatingItsTrialIsTheRunOfItsSwitches) {
   EXPECT_EQ(tried.scene.sim.particles.sxx, sim.particles.sxx);
 }
 
+// The repeated trial moves a run only for a gain past the margin: a spell in
+// which both counts step alike leaves it where it is.
+TEST(ThreadTrial, ARepeatedTrialSwitchesOnlyPastTheMargin) {
+  ThreadTrial again;
+  again.threads = {1, 2};
+  again.us_per_step = {97.0, 63.0};
+  again.chosen = 2;
+  EXPECT_EQ(threads_after_retrial(again, 1), 2);  // the spell at the start is over
+  EXPECT_EQ(threads_after_retrial(again, 2), 2);
+  again.us_per_step = {83.0, 85.0};
+  again.chosen = 1;
+  EXPECT_EQ(threads_after_retrial(again, 2), 2) << "1 thread is not 5 % faster";
+  again.us_per_step = {83.0, 210.0};  // another program holds the second core
+  EXPECT_EQ(threads_after_retrial(again, 2), 1);
+  again.diverged = true;
+  EXPECT_EQ(threads_after_retrial(again, 2), 2);
+}
+
 }  // namespace
 }  // namespace gearsph

@@ -1,9 +1,7 @@
 #include "solver/run/runner.hpp"
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 
 #include "solver/diagnostics/energy.hpp"
 #include "solver/diagnostics/guard.hpp"
@@ -88,25 +86,15 @@ RunResult run_job(PreparedJob& job, RunObserver* observer) {
     sim.threads = trial.chosen;
     next_trial_s = wall() + job.retrial_every_s;
   }
-  // The trial again on a copy of the run as it is now (thread_trial.hpp);
-  // from the next step on, its choice, if that beats the present count by
-  // the trial's margin. Within it, as in a spell where one thread and two
-  // step alike, the run stays: two runs of the paper's case that switched
-  // to one thread there (83-87 us a step against 84-86 on two) stayed on it
-  // 10-20 s, past the spell's end.
+  // The trial again on a copy of the run as it is now; from the next step
+  // on, the count it gives (threads_after_retrial).
   auto retrial = [&](std::int64_t s) {
     const ThreadTrial again = trial_threads(sim, job.trial_threads);
     next_trial_s = wall() + job.retrial_every_s;
-    if (again.diverged || again.chosen == sim.threads) return;
-    auto us_at = [&](int threads) {
-      const auto k = std::find(again.threads.begin(), again.threads.end(), threads);
-      return k == again.threads.end() ? std::numeric_limits<double>::infinity()
-                                      : again.us_per_step[k - again.threads.begin()];
-    };
-    if (!(us_at(again.chosen) < (1.0 - kTrialMargin) * us_at(sim.threads))) return;
-    sim.threads = again.chosen;
-    switches.push_back(
-        {{"step", s + 1}, {"threads", again.chosen}, {"us_per_step", again.us_per_step}});
+    const int next = threads_after_retrial(again, sim.threads);
+    if (next == sim.threads) return;
+    sim.threads = next;
+    switches.push_back({{"step", s + 1}, {"threads", next}, {"us_per_step", again.us_per_step}});
   };
   if (observer) observer->on_start(job);
   auto last_progress = Clock::now();

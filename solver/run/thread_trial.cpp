@@ -77,4 +77,14 @@ ThreadTrial trial_threads(const Simulation& sim, int most) {
   return trial;
 }
 
+int threads_after_retrial(const ThreadTrial& again, int current) {
+  if (again.diverged || again.chosen == current) return current;
+  auto us_at = [&](int threads) {
+    const auto k = std::find(again.threads.begin(), again.threads.end(), threads);
+    return k == again.threads.end() ? std::numeric_limits<double>::infinity()
+                                    : again.us_per_step[k - again.threads.begin()];
+  };
+  return us_at(again.chosen) < (1.0 - kTrialMargin) * us_at(current) ? again.chosen : current;
+}
+
 }  // namespace gearsph

@@ -38,4 +38,12 @@ inline constexpr double kRetrialSeconds = 10.0;
 inline constexpr double kTrialMargin = 0.05;
 ThreadTrial trial_threads(const Simulation& sim, int most);
 
+// The count a run at `current` threads takes after repeating the trial:
+// the trial's choice if that beats `current` by kTrialMargin, else
+// `current` (also after a diverged trial). Within the margin, as in a spell
+// where one thread and two step alike, the run stays: two runs of the
+// paper's case that switched to one thread there (83-87 us a step against
+// 84-86 on two) stayed on it 10-20 s, past the spell's end.
+int threads_after_retrial(const ThreadTrial& again, int current);
+
 }  // namespace gearsph
