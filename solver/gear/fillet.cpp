@@ -1,0 +1,187 @@
+#include "solver/gear/fillet.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace gearsph::gear {
+
+namespace {
+
+using geometry::Point;
+constexpr double kPi = std::numbers::pi;
+
+// The right half tooth of the generating frame (axis +y) from the space
+// centre up to the form circle, cut exactly there.
+std::vector<Point> fillet_polyline(const geometry::PinionGeometry& g) {
+  const std::vector<Point>& half = g.half_tooth();
+  const double r_end = g.form_radius();
+  std::vector<Point> out{half.front()};
+  for (std::size_t k = 1; k < half.size(); ++k) {
+    const double r0 = geometry::norm(half[k - 1]), r1 = geometry::norm(half[k]);
+    if (r1 >= r_end) {
+      const double f = r1 > r0 ? std::clamp((r_end - r0) / (r1 - r0), 0.0, 1.0) : 1.0;
+      out.push_back(half[k - 1] + f * (half[k] - half[k - 1]));
+      return out;
+    }
+    out.push_back(half[k]);
+  }
+  throw std::runtime_error("fillet: the half tooth never reaches the form circle");
+}
+
+// Position at arc length s along a polyline with cumulative lengths `cum`.
+Point at_arc(const std::vector<Point>& line, const std::vector<double>& cum, double s) {
+  s = std::clamp(s, 0.0, cum.back());
+  const auto it = std::upper_bound(cum.begin(), cum.end(), s);
+  const std::size_t k =
+      std::min<std::size_t>(std::max<std::ptrdiff_t>(it - cum.begin(), 1), line.size() - 1);
+  const double len = cum[k] - cum[k - 1];
+  const double f = len > 0.0 ? (s - cum[k - 1]) / len : 0.0;
+  return line[k - 1] + f * (line[k] - line[k - 1]);
+}
+
+// The fillet in the generating frame, right side, resampled every `step`.
+FilletCurve generating_curve(const geometry::PinionGeometry& g, double step) {
+  const std::vector<Point> line = fillet_polyline(g);
+  std::vector<double> cum(line.size(), 0.0);
+  for (std::size_t k = 1; k < line.size(); ++k) {
+    cum[k] = cum[k - 1] + geometry::norm(line[k] - line[k - 1]);
+  }
+  const double length = cum.back();
+  const std::size_t n =
+      std::max<std::size_t>(3, static_cast<std::size_t>(std::ceil(length / step)) + 1);
+  const double ds = length / static_cast<double>(n - 1);
+  // Tangents by a central difference over a short chord: the polyline is
+  // dense (chord error 0.1 um), so a tenth of a step is well resolved.
+  const double delta = 0.1 * ds;
+  FilletCurve c;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double s = ds * static_cast<double>(i);
+    const Point p = at_arc(line, cum, s);
+    const Point d = at_arc(line, cum, s + delta) - at_arc(line, cum, s - delta);
+    const Point t = (1.0 / geometry::norm(d)) * d;
+    c.points.push_back(p);
+    c.tangent.push_back(t);
+    c.normal.push_back({t.y, -t.x});  // the walk is counter-clockwise round the gear
+    c.arc.push_back(s);
+  }
+  return c;
+}
+
+FilletCurve placed(const FilletCurve& gen, bool mirror, double to_gear,
+                   const geometry::Transform& placement) {
+  FilletCurve c;
+  const double turn = to_gear + placement.angle;
+  auto flip = [mirror](Point p) { return mirror ? Point{-p.x, p.y} : p; };
+  const Point centre = placement.apply({0.0, 0.0});
+  for (std::size_t i = 0; i < gen.size(); ++i) {
+    const Point p = placement.apply(geometry::rotate(flip(gen.points[i]), to_gear));
+    const Point t = geometry::rotate(flip(gen.tangent[i]), turn);
+    c.points.push_back(p);
+    c.tangent.push_back(t);
+    c.normal.push_back(geometry::rotate(flip(gen.normal[i]), turn));
+    c.arc.push_back(gen.arc[i]);
+    c.radius.push_back(geometry::norm(p - centre));
+    // Frame-independent: measured in the generating frame (axis +y).
+    c.tangent_angle.push_back(std::atan2(std::abs(gen.tangent[i].x), std::abs(gen.tangent[i].y)));
+  }
+  // ISO's point: the tangent angle falls through 30 degrees once on the way up.
+  const double target = kPi / 6.0;
+  c.i30 = c.size() - 2;
+  c.f30 = 1.0;
+  for (std::size_t i = 0; i + 1 < c.size(); ++i) {
+    const double a0 = c.tangent_angle[i], a1 = c.tangent_angle[i + 1];
+    if (a0 >= target && a1 <= target) {
+      c.i30 = i;
+      c.f30 = a0 > a1 ? (a0 - target) / (a0 - a1) : 0.0;
+      break;
+    }
+  }
+  return c;
+}
+
+double at_fraction(const std::vector<double>& v, std::size_t i, double f) {
+  return v[i] + f * (v[i + 1] - v[i]);
+}
+
+// The extreme of `v` (largest of sign * v), refined by a parabola through it
+// and its neighbours when it is not at an end.
+FilletPeak peak_of(const FilletCurve& c, const std::vector<double>& v, double sign) {
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < v.size(); ++i) {
+    if (sign * v[i] > sign * v[best]) best = i;
+  }
+  FilletPeak p;
+  p.stress_Pa = v[best];
+  p.arc_m = c.arc[best];
+  p.radius_m = c.radius[best];
+  p.angle_rad = c.tangent_angle[best];
+  if (best > 0 && best + 1 < v.size()) {
+    const double a = v[best - 1], b = v[best], d = v[best + 1];
+    const double curvature = a - 2.0 * b + d;
+    if (sign * curvature < 0.0) {
+      const double u = std::clamp(0.5 * (a - d) / curvature, -0.5, 0.5);  // in samples
+      p.stress_Pa = b - 0.25 * (a - d) * u;
+      const std::size_t j = u >= 0.0 ? best : best - 1;
+      const double f = u >= 0.0 ? u : 1.0 + u;
+      p.arc_m = at_fraction(c.arc, j, f);
+      p.radius_m = at_fraction(c.radius, j, f);
+      p.angle_rad = at_fraction(c.tangent_angle, j, f);
+    }
+  }
+  p.at_iso30_Pa = at_fraction(v, c.i30, c.f30);
+  return p;
+}
+
+}  // namespace
+
+ToothFillets tooth_fillets(const geometry::PinionGeometry& pinion, int k,
+                           const geometry::Transform& placement, Point load_direction,
+                           double step) {
+  if (!(step > 0.0)) throw std::invalid_argument("fillet: the sampling step must be positive");
+  const FilletCurve gen = generating_curve(pinion, step);
+  const double to_gear = kPi + k * pinion.angular_pitch();
+  FilletCurve right = placed(gen, false, to_gear, placement);
+  FilletCurve left = placed(gen, true, to_gear, placement);
+  // The loaded flank faces the force: its outward normal (at the foot of the
+  // flank, the end of the fillet) points against it.
+  const bool right_loaded = geometry::dot(right.normal.back(), load_direction) <
+                            geometry::dot(left.normal.back(), load_direction);
+  ToothFillets f;
+  f.tooth = k;
+  f.centre = placement.apply({0.0, 0.0});
+  f.tension = right_loaded ? std::move(right) : std::move(left);
+  f.compression = right_loaded ? std::move(left) : std::move(right);
+  return f;
+}
+
+double PlaneStress::max_principal() const {
+  return 0.5 * (xx + yy) + std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy);
+}
+
+double PlaneStress::min_principal() const {
+  return 0.5 * (xx + yy) - std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy);
+}
+
+double PlaneStress::along(Point t) const {
+  return t.x * t.x * xx + 2.0 * t.x * t.y * xy + t.y * t.y * yy;
+}
+
+FilletStress fillet_stress(const ToothFillets& f, const std::vector<PlaneStress>& tension_stress,
+                           const std::vector<PlaneStress>& compression_stress) {
+  if (tension_stress.size() != f.tension.size() ||
+      compression_stress.size() != f.compression.size()) {
+    throw std::invalid_argument("fillet_stress: one stress per fillet sample");
+  }
+  FilletStress out;
+  for (const PlaneStress& s : tension_stress) out.tension_curve.push_back(s.max_principal());
+  for (const PlaneStress& s : compression_stress) {
+    out.compression_curve.push_back(s.min_principal());
+  }
+  out.tension = peak_of(f.tension, out.tension_curve, 1.0);
+  out.compression = peak_of(f.compression, out.compression_curve, -1.0);
+  return out;
+}
+
+}  // namespace gearsph::gear

@@ -1,0 +1,85 @@
+#pragma once
+// Where a loaded tooth breaks: the two root fillets of one pinion tooth as
+// curves on the true (generated) outline, and the stress along them.
+//
+// A fillet runs from the middle of the tooth space (root circle) up the
+// trochoid to the form circle, where the involute begins. On that traction-
+// free boundary the only in-plane stress is the tangential one, so the
+// largest principal stress of the tension fillet and the lowest of the
+// compression fillet are read along the curve from a stress tensor given
+// at each of its points (recovered from particles, or interpolated from a
+// finite-element solution: the same curve and the same numbers for both).
+//
+// ISO 6336-3 rates the tooth by the stress at its 30-degree point, where the
+// fillet's tangent makes 30 degrees with the tooth axis; the peak of a
+// loaded tooth sits near it (Linke 1996; ISO 6336-3:2006, 6.2).
+#include <vector>
+
+#include "solver/geometry/gear_profile.hpp"
+#include "solver/geometry/polygon.hpp"
+
+namespace gearsph::gear {
+
+// One fillet, sampled at an even arc-length step.
+struct FilletCurve {
+  std::vector<geometry::Point> points;   // on the outline [m]
+  std::vector<geometry::Point> tangent;  // unit, pointing up the fillet (toward the flank)
+  std::vector<geometry::Point> normal;   // unit, outward (out of the material)
+  std::vector<double> arc;               // arc length from the space centre [m]
+  std::vector<double> radius;            // distance from the gear centre [m]
+  // Angle between the tangent and the tooth axis [rad]: pi/2 at the space
+  // centre, about 0 where the flank begins.
+  std::vector<double> tangent_angle;
+  // ISO's 30-degree point, interpolated between samples i30 and i30 + 1.
+  std::size_t i30 = 0;
+  double f30 = 0.0;
+  std::size_t size() const { return points.size(); }
+};
+
+// The two fillets of one tooth, placed in the world.
+struct ToothFillets {
+  int tooth = 0;
+  FilletCurve tension;      // under the loaded flank: bending stretches it
+  FilletCurve compression;  // under the unloaded flank
+  geometry::Point centre;   // gear centre in the world [m]
+};
+
+// Tooth k of `pinion` (gear frame of gear_profile.hpp) placed by `placement`,
+// sampled every `step` metres. The tension side is the one whose flank the
+// force `load_direction` (world, the force on the tooth) pushes into.
+ToothFillets tooth_fillets(const geometry::PinionGeometry& pinion, int k,
+                           const geometry::Transform& placement, geometry::Point load_direction,
+                           double step);
+
+// In-plane Cauchy stress [Pa].
+struct PlaneStress {
+  double xx = 0.0, yy = 0.0, xy = 0.0;
+  double max_principal() const;
+  double min_principal() const;
+  // t . sigma . t for a unit vector t.
+  double along(geometry::Point t) const;
+};
+
+// What a gear engineer reads off one fillet.
+struct FilletPeak {
+  double stress_Pa = 0.0;    // largest sigma_1 (tension) or lowest sigma_3 (compression)
+  double arc_m = 0.0;        // where, along the curve
+  double radius_m = 0.0;     // where, from the gear centre
+  double angle_rad = 0.0;    // tangent against the tooth axis there
+  double at_iso30_Pa = 0.0;  // the same principal stress at ISO's 30-degree point
+};
+
+struct FilletStress {
+  FilletPeak tension, compression;
+  // Along each curve, per sample: sigma_1 of the tension fillet, sigma_3 of
+  // the compression fillet [Pa] (the curves a plot shows against `arc`).
+  std::vector<double> tension_curve, compression_curve;
+};
+
+// `tension_stress[i]` is the stress at f.tension.points[i] (and the same for
+// compression). The peak is refined by a parabola through the largest
+// sample and its neighbours.
+FilletStress fillet_stress(const ToothFillets& f, const std::vector<PlaneStress>& tension_stress,
+                           const std::vector<PlaneStress>& compression_stress);
+
+}  // namespace gearsph::gear

@@ -1,0 +1,110 @@
+// The root fillets of a tooth as curves (solver/gear/fillet.hpp): they lie on
+// the generated outline, their 30-degree point is the one the ISO section
+// uses, the tension side is the loaded flank's, and the peak of a stress
+// given along them is found where it is.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "solver/gear/fillet.hpp"
+#include "solver/gear/gear_rating.hpp"
+
+namespace gearsph::gear {
+namespace {
+
+using geometry::Point;
+constexpr double kPi = std::numbers::pi;
+
+geometry::PinionGeometry paper_pinion() {
+  geometry::PinionSpec s;
+  s.teeth = 12;
+  s.tool.module_m = 4e-3;
+  s.tool.pressure_angle_rad = 20.0 * kPi / 180.0;
+  s.backlash_m = 1e-4;
+  return geometry::PinionGeometry(s);
+}
+
+TEST(Fillet, CurvesLieOnTheOutlineFromTheSpaceCentreToTheFormCircle) {
+  const geometry::PinionGeometry g = paper_pinion();
+  const geometry::Transform place{0.3, {0.01, -0.02}};
+  const ToothFillets f = tooth_fillets(g, 2, place, {1.0, 0.0}, 2e-5);
+  const geometry::Polygon outline = geometry::transformed(g.outline(), place);
+  for (const FilletCurve* c : {&f.tension, &f.compression}) {
+    ASSERT_GT(c->size(), 100u);
+    EXPECT_NEAR(c->radius.front(), g.root_radius(), 1e-9);
+    EXPECT_NEAR(c->radius.back(), g.form_radius(), 1e-9);
+    // At the space centre the tangent is square to the radius there, which
+    // is half a pitch (pi / z) from the tooth axis.
+    EXPECT_NEAR(c->tangent_angle.front(), 0.5 * kPi - kPi / g.teeth(), 1e-3);
+    for (std::size_t i = 0; i < c->size(); i += 7) {
+      EXPECT_LT(geometry::distance_to_polyline(outline, c->points[i], true), 1e-7);
+      // Outward: the normal points away from the material (a point a little
+      // along it is outside the outline, a little against it inside).
+      const Point out = c->points[i] + 1e-5 * c->normal[i];
+      const Point in = c->points[i] - 1e-5 * c->normal[i];
+      EXPECT_FALSE(geometry::is_inside(outline, out)) << i;
+      EXPECT_TRUE(geometry::is_inside(outline, in)) << i;
+      EXPECT_NEAR(geometry::dot(c->normal[i], c->tangent[i]), 0.0, 1e-12);
+    }
+    for (std::size_t i = 1; i < c->size(); ++i) EXPECT_GT(c->arc[i], c->arc[i - 1]);
+  }
+}
+
+TEST(Fillet, ThirtyDegreePointIsTheOneOfTheIsoSection) {
+  const geometry::PinionGeometry g = paper_pinion();
+  const ThirtyDegreePoints t30 = thirty_degree_points(g);
+  // Tooth 0 unplaced: generating frame turned by pi (tooth axis -y).
+  const ToothFillets f = tooth_fillets(g, 0, {}, {1.0, 0.0}, 1e-5);
+  for (const FilletCurve* c : {&f.tension, &f.compression}) {
+    const Point p = c->points[c->i30] + c->f30 * (c->points[c->i30 + 1] - c->points[c->i30]);
+    // Both 30-degree points have the same radius and the chord s_Fn.
+    EXPECT_NEAR(geometry::norm(p), geometry::norm(t30.right), 2e-6);
+    EXPECT_NEAR(2.0 * std::abs(p.x), t30.chord, 4e-6);
+  }
+}
+
+TEST(Fillet, TensionSideIsUnderTheFlankTheForcePushes) {
+  const geometry::PinionGeometry g = paper_pinion();
+  // Tooth 0 points down (-y); a force toward +x pushes into its -x flank.
+  const ToothFillets f = tooth_fillets(g, 0, {}, {1.0, 0.0}, 5e-5);
+  EXPECT_LT(f.tension.points[f.tension.size() / 2].x, 0.0);
+  EXPECT_GT(f.compression.points[f.compression.size() / 2].x, 0.0);
+  const ToothFillets r = tooth_fillets(g, 0, {}, {-1.0, 0.0}, 5e-5);
+  EXPECT_GT(r.tension.points[r.tension.size() / 2].x, 0.0);
+}
+
+TEST(Fillet, PeakOfAGivenStressIsFoundBetweenSamples) {
+  const geometry::PinionGeometry g = paper_pinion();
+  const ToothFillets f = tooth_fillets(g, 0, {}, {1.0, 0.0}, 1e-4);
+  // A tangential stress that is a parabola of arc length, peaking between
+  // samples: sigma_t = 100 MPa - k (s - s*)^2, and -60 MPa on the other side.
+  const double s_star = 0.37 * f.tension.arc.back() + 0.3e-4;
+  auto field = [&](const FilletCurve& c, double peak) {
+    std::vector<PlaneStress> out;
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      const double ds = c.arc[i] - s_star;
+      const double st = peak * (1.0 - 1e6 * ds * ds);
+      const Point t = c.tangent[i];
+      out.push_back({st * t.x * t.x, st * t.y * t.y, st * t.x * t.y});
+    }
+    return out;
+  };
+  const FilletStress s = fillet_stress(f, field(f.tension, 100e6), field(f.compression, -60e6));
+  EXPECT_NEAR(s.tension.stress_Pa, 100e6, 1e3);
+  EXPECT_NEAR(s.tension.arc_m, s_star, 1e-8);
+  EXPECT_NEAR(s.compression.stress_Pa, -60e6, 1e3);
+  EXPECT_NEAR(s.compression.arc_m, s_star, 1e-8);
+  // Along the tangent the tensor gives back sigma_t; the 30-degree value is
+  // the curve's value there.
+  const std::size_t i = f.tension.i30;
+  const double expect =
+      s.tension_curve[i] + f.tension.f30 * (s.tension_curve[i + 1] - s.tension_curve[i]);
+  EXPECT_DOUBLE_EQ(s.tension.at_iso30_Pa, expect);
+  const PlaneStress one{3.0, -1.0, 2.0};
+  EXPECT_NEAR(one.max_principal() + one.min_principal(), 2.0, 1e-12);
+  EXPECT_NEAR(one.along({1.0, 0.0}), 3.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace gearsph::gear
