@@ -106,5 +106,20 @@ TEST(Fillet, PeakOfAGivenStressIsFoundBetweenSamples) {
   EXPECT_NEAR(one.along({1.0, 0.0}), 3.0, 1e-12);
 }
 
+TEST(Fillet, NamedPointsOfThePathOfContactLieInOrderOnTheFlank) {
+  const geometry::PinionGeometry g = paper_pinion();
+  const ContactPath c = rack_contact_path(g);
+  const double lp = path_point_radius(g, c, "lpstc"), hp = path_point_radius(g, c, "hpstc");
+  EXPECT_LT(g.form_radius(), lp);
+  EXPECT_LT(lp, path_point_radius(g, c, "pitch"));
+  EXPECT_LT(path_point_radius(g, c, "pitch"), hp);
+  EXPECT_LT(hp, path_point_radius(g, c, "tip"));
+  // Along the line of action the single-contact zone is (2 - eps) p_b long.
+  const double rb = g.base_radius();
+  auto from_T = [rb](double r) { return std::sqrt(r * r - rb * rb); };
+  EXPECT_NEAR(from_T(hp) - from_T(lp), (2.0 - c.contact_ratio) * c.base_pitch, 1e-12);
+  EXPECT_THROW(path_point_radius(g, c, "root"), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace gearsph::gear

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 namespace gearsph::gear {
 
@@ -36,6 +37,17 @@ ContactPath rack_contact_path(const geometry::PinionGeometry& g) {
   const double g_hpstc = std::min(c.start_from_T + c.base_pitch, c.end_from_T);
   c.hpstc_radius = std::sqrt(rb * rb + g_hpstc * g_hpstc);
   return c;
+}
+
+double path_point_radius(const geometry::PinionGeometry& g, const ContactPath& c,
+                         std::string_view name) {
+  const double rb = g.base_radius();
+  auto at = [rb](double from_T) { return std::sqrt(rb * rb + from_T * from_T); };
+  if (name == "pitch") return g.pitch_radius();
+  if (name == "tip") return g.tip_radius();
+  if (name == "hpstc") return c.hpstc_radius;
+  if (name == "lpstc") return at(std::max(c.start_from_T, c.end_from_T - c.base_pitch));
+  throw std::invalid_argument("unknown point of the path of contact: " + std::string(name));
 }
 
 double lewis_form_factor(int teeth) {
