@@ -356,7 +356,9 @@ TEST(PairOnce, ChunksFollowTheApproachingPairsAndRunsRepeatBitForBit) {
 // (the Hertz cylinder on its block) keeps the gathers.
 TEST(PairOnce, UniformScenesTakeConstantsAndGiveTheSameBits) {
   auto gear = [](bool constants) {
-    PreparedJob prepared = prepare_job({{"scene", {{"type", "rack_pinion"}}}}, 2);
+    // The paper's lattice: one mass and one sound speed for every particle.
+    PreparedJob prepared = prepare_job(
+        {{"scene", {{"type", "rack_pinion"}}}, {"discretization", {{"particles", "lattice"}}}}, 2);
     Simulation sim = prepared.scene.sim;
     integrate::initialise(sim);
     EXPECT_TRUE(sim.reference.uniform.all);

@@ -18,7 +18,7 @@ Simulation one_particle(const Material& mat) {
   b.name = "block";
   b.material = mat;
   sim.bodies.push_back(b);
-  sim.particles.add(0.0, 0.0, mat.rho0 * 1e-6, mat.rho0, 0, 0);
+  sim.particles.add(0.0, 0.0, mat.rho0 * 1e-6, mat.rho0, 0, 0, 1e-3);
   sim.bodies[0].end = 1;
   sim.method.artificial_stress.epsilon = 0.0;
   return sim;

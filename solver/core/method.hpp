@@ -11,10 +11,19 @@ namespace gearsph {
 
 enum class Formulation { UpdatedLagrangian, TotalLagrangian };
 
+// How a scene places its particles: on a square lattice (cell centres
+// inside the outline, a staircase along curves), or body-fitted (a row on
+// the true outline and a relaxed interior, geometry/body_fitted.hpp), which
+// may be graded from a fine spacing at the scene's stress raisers to dx.
+enum class ParticleLayout { SceneDefault, Lattice, BodyFitted };
+
 struct Discretization {
-  double dx = 1e-3;        // lattice spacing [m]
-  double h_over_dx = 1.0;  // smoothing length h = kappa dx
+  double dx = 1e-3;        // lattice spacing, or the bulk spacing of body-fitted particles [m]
+  double h_over_dx = 1.0;  // smoothing length h = kappa dx (per particle: kappa times its spacing)
   KernelType kernel = KernelType::SeedQuartic;
+  ParticleLayout layout = ParticleLayout::SceneDefault;
+  double fine_dx = 0.0;  // body-fitted: spacing at the stress raisers [m] (0: the scene's default)
+  double grading = 0.0;  // body-fitted: growth of the spacing per unit distance (0: default)
   double h() const { return h_over_dx * dx; }
 };
 

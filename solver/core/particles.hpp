@@ -25,6 +25,10 @@ struct Particles {
   Column<double> mass;  // [kg/m]
   Column<double> rho0;  // [kg/m^3]
   Column<double> cs;    // signal (P-wave) speed of the material [m/s]
+  // Particle spacing around the particle [m]: the lattice spacing, or the
+  // local spacing of graded body-fitted particles; the smoothing length is
+  // h_i = h_over_dx * spacing_i.
+  Column<double> spacing;
 
   // State.
   Column<double> x, y;                // position [m]
@@ -65,7 +69,8 @@ struct Particles {
   // gradients, and its stress pass turns the contact normals by F). A later
   // resize() brings them back.
   void release_updated_lagrangian();
-  void add(double px, double py, double m, double density, int body_index, int motion_index);
+  void add(double px, double py, double m, double density, int body_index, int motion_index,
+           double particle_spacing);
 
   double volume(std::size_t i) const { return mass[i] / rho[i]; }
 

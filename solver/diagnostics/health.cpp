@@ -47,24 +47,27 @@ void for_each_body_pair(const Simulation& sim, F&& f) {
 
 Spacing min_spacing(const Simulation& sim) {
   const Particles& p = sim.particles;
-  const double dx = sim.discretization.dx;
   Spacing s;
-  double r2_min = 1e300;
+  // Against the pair's own spacing (graded particles; dx on a lattice).
+  double q2_min = 1e300;
   for_each_body_pair(sim, [&](std::size_t i, std::size_t j) {
     const double ddx = p.x[i] - p.x[j], ddy = p.y[i] - p.y[j];
-    const double r2 = ddx * ddx + ddy * ddy;
-    if (r2 < r2_min) {
-      r2_min = r2;
+    const double dx = 0.5 * (p.spacing[i] + p.spacing[j]);
+    const double q2 = (ddx * ddx + ddy * ddy) / (dx * dx);
+    if (q2 < q2_min) {
+      q2_min = q2;
       s.particle = static_cast<long>(i);
     }
   });
-  if (s.particle >= 0) s.over_dx = std::sqrt(r2_min) / dx;
+  if (s.particle >= 0) s.over_dx = std::sqrt(q2_min);
   return s;
 }
 
 double penetration_over_dx(const Simulation& sim) {
   if (sim.bodies.size() < 2) return 0.0;
-  const double dx = sim.discretization.dx;
+  // Graded particles: against the finest spacing (where the bodies touch).
+  double dx = sim.discretization.dx;
+  for (double s : sim.particles.spacing) dx = std::min(dx, s);
   if (sim.contact.model != ContactModel::Kernel) return sim.contact_state.max_penetration / dx;
   // Kernel coupling has no contact law: overlap is measured against the
   // lattice spacing, the distance of two touching particles.
@@ -85,7 +88,6 @@ double penetration_over_dx(const Simulation& sim) {
 
 double zigzag_indicator(const Simulation& sim) {
   const Particles& p = sim.particles;
-  const double dx = sim.discretization.dx;
   // The in-plane stress tensor, component by component: signed fields stay
   // smooth through a neutral axis, where von Mises has a kink.
   constexpr int kComponents = 3;
@@ -95,11 +97,12 @@ double zigzag_indicator(const Simulation& sim) {
     s[kComponents * i + 1] = p.sigma_yy(i);
     s[kComponents * i + 2] = p.sigma_xy(i);
   }
-  // Lattice neighbours: reference distance about one spacing.
-  const double r2_max = 1.5 * 1.5 * dx * dx;
+  // Nearest neighbours: reference distance about one spacing (the pair's
+  // own: graded particles; dx on a lattice).
   for_each_body_pair(sim, [&](std::size_t i, std::size_t j) {
     const double ddx = p.x0[i] - p.x0[j], ddy = p.y0[i] - p.y0[j];
-    if (ddx * ddx + ddy * ddy > r2_max) return;
+    const double dx = 0.5 * (p.spacing[i] + p.spacing[j]);
+    if (ddx * ddx + ddy * ddy > 1.5 * 1.5 * dx * dx) return;
     for (int c = 0; c < kComponents; ++c) {
       sum[kComponents * i + c] += s[kComponents * j + c];
       sum[kComponents * j + c] += s[kComponents * i + c];

@@ -156,6 +156,23 @@ ToothFillets tooth_fillets(const geometry::PinionGeometry& pinion, int k,
   return f;
 }
 
+std::vector<Point> loaded_flank(const geometry::PinionGeometry& pinion, int k,
+                                const geometry::Transform& placement, Point load_direction) {
+  // The side comes from the fillets' flank-foot normals (tooth_fillets).
+  const ToothFillets f =
+      tooth_fillets(pinion, k, placement, load_direction, 1e-3 * pinion.spec().tool.module_m);
+  const double to_gear = kPi + k * pinion.angular_pitch();
+  const Point foot = f.tension.points.back();
+  std::vector<Point> right, left;
+  for (const Point& q : pinion.half_tooth()) {
+    if (geometry::norm(q) < pinion.form_radius()) continue;
+    right.push_back(placement.apply(geometry::rotate(q, to_gear)));
+    left.push_back(placement.apply(geometry::rotate({-q.x, q.y}, to_gear)));
+  }
+  // The tension fillet ends at the foot of the loaded flank.
+  return geometry::norm(right.front() - foot) < geometry::norm(left.front() - foot) ? right : left;
+}
+
 double PlaneStress::max_principal() const {
   return 0.5 * (xx + yy) + std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy);
 }

@@ -51,6 +51,13 @@ ToothFillets tooth_fillets(const geometry::PinionGeometry& pinion, int k,
                            const geometry::Transform& placement, geometry::Point load_direction,
                            double step);
 
+// The involute flank that the force `load_direction` pushes into, from the
+// form circle to the tip (tooth k placed as in tooth_fillets): where a
+// graded spacing is made fine for contact.
+std::vector<geometry::Point> loaded_flank(const geometry::PinionGeometry& pinion, int k,
+                                          const geometry::Transform& placement,
+                                          geometry::Point load_direction);
+
 // In-plane Cauchy stress [Pa].
 struct PlaneStress {
   double xx = 0.0, yy = 0.0, xy = 0.0;

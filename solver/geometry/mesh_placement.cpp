@@ -1,5 +1,6 @@
 #include "solver/geometry/mesh_placement.hpp"
 
+#include <cmath>
 #include <numbers>
 #include <stdexcept>
 
@@ -24,6 +25,31 @@ MeshPlacement place_in_mesh(const PinionGeometry& pinion, const RackGeometry& ra
   out.rack.shift = {pinion_centre.x + travel_m - rack.space_centre_x(rack_space),
                     pinion_centre.y - out.centre_distance};
   return out;
+}
+
+double travel_for_contact(const PinionGeometry& pinion, int pinion_tooth, double radius,
+                          double phase, bool clockwise) {
+  const double rb = pinion.base_radius(), r = pinion.pitch_radius();
+  if (!(radius > rb && radius <= pinion.tip_radius() * (1.0 + 1e-12))) {
+    throw std::invalid_argument("contact radius must lie between the base and the tip circle");
+  }
+  const double alpha = pinion.spec().tool.pressure_angle_rad;
+  // Clockwise drive (the mirror image gives the other): T at the lower right
+  // of the centre, the line of action through the pitch point P = (0, -r) at
+  // alpha, contact points Q(g) = T - g (cos alpha, sin alpha).
+  const Point T{r * std::sin(alpha) * std::cos(alpha), -r * std::cos(alpha) * std::cos(alpha)};
+  const double g = std::sqrt(radius * radius - rb * rb);
+  const Point Q = T - g * Point{std::cos(alpha), std::sin(alpha)};
+  // Tooth k's axis at -pi/2 + 2 pi k / z + turn, its leading (driving) flank
+  // psi further clockwise; mirror: the tooth -k of the mirrored pinion.
+  const double psi = pinion.involute_half_angle(radius);
+  const int k = clockwise ? pinion_tooth : -pinion_tooth;
+  const double axis =
+      -std::numbers::pi / 2.0 + pinion.tooth_centre_angle(k) - pinion.tooth_centre_angle(0);
+  const double mirrored_phase = clockwise ? phase : -phase;
+  const double turn =
+      std::remainder(std::atan2(Q.y, Q.x) + psi - axis, 2.0 * std::numbers::pi) - mirrored_phase;
+  return (clockwise ? 1.0 : -1.0) * r * turn;  // rolling: the pinion turns travel / r
 }
 
 }  // namespace gearsph::geometry

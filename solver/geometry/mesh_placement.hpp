@@ -32,4 +32,19 @@ MeshPlacement place_in_mesh(const PinionGeometry& pinion, const RackGeometry& ra
                             Point pinion_centre, int pinion_tooth, int rack_space,
                             double travel_m = 0.0);
 
+// The rack travel at which tooth k's driving flank touches the rack at
+// `radius` on the pinion (r_b < radius <= r_a), with the pinion turned
+// besides by `phase` (counter-clockwise, e.g. to close the play on the
+// driving side). The driving flank of a clockwise pinion is the one that
+// leads as it turns (for tooth 0, pointing down, the flank facing -x); a
+// counter-clockwise one is its mirror image.
+//
+// The contact lies on the line of action, tangent to the base circle at T,
+// at g = sqrt(radius^2 - r_b^2) from T; the flank point at that radius sits
+// the involute half angle psi(radius) from the tooth axis (gear_profile.hpp).
+// The tooth is in contact there when that flank point and the point g of the
+// line of action have the same polar angle.
+double travel_for_contact(const PinionGeometry& pinion, int pinion_tooth, double radius,
+                          double phase, bool clockwise);
+
 }  // namespace gearsph::geometry

@@ -3,6 +3,7 @@
 #include <malloc.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <sstream>
@@ -33,6 +34,25 @@ bool penalty_contact(const Simulation& sim) {
   return sim.bodies.size() > 1 && physics::is_penalty(sim.contact.model);
 }
 
+// How far apart two contact candidates may be. Lattice surfaces reach 1.5
+// spacings into each body, plus the hat's spacing across; body-fitted
+// surfaces are their outline rows (depth 0), so twice the coarsest spacing
+// of a surface particle covers the hat and a slanted approach.
+double contact_reach(const Simulation& sim) {
+  const double dx = sim.discretization.dx;
+  if (sim.contact.model != ContactModel::Surface) return sim.contact.r0_over_dx * dx;
+  const bool fitted =
+      std::any_of(sim.bodies.begin(), sim.bodies.end(), [](const Body& b) { return b.fitted; });
+  if (!fitted) return (2.0 * scenes::kSurfaceReachOverDx + 1.0) * dx;
+  const Particles& p = sim.particles;
+  double reach = 0.0;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    if (std::isfinite(p.surf_depth[i]))
+      reach = std::max(reach, 2.0 * (p.surf_depth[i] + p.spacing[i]));
+  }
+  return reach;
+}
+
 // `contacts_moved`: the drift found a particle beyond half the contact
 // list's skin (kick_drift), so the list needs no scan of its own here.
 void refresh_neighbours(Simulation& sim, bool contacts_moved) {
@@ -50,10 +70,7 @@ void refresh_neighbours(Simulation& sim, bool contacts_moved) {
   }
   if (penalty_contact(sim) && (contacts_moved || !sim.contacts.built_for(sim.particles.n))) {
     sim.contacts.set_skin(skin);
-    // Surface contact reaches particles up to 1.5 dx below each surface.
-    const double reach = sim.contact.model == ContactModel::Surface
-                             ? (2.0 * scenes::kSurfaceReachOverDx + 1.0) * sim.discretization.dx
-                             : sim.contact.r0_over_dx * sim.discretization.dx;
+    const double reach = contact_reach(sim);
     sim.contacts.build(sim.particles, reach + skin, PairSelection::OtherBody,
                        /*reference=*/false, sim.threads, physics::contact_eligible(sim));
     physics::prepare_contact(sim);  // normals' scratch and candidates, before any stress pass

@@ -231,8 +231,11 @@ StabilityLimit estimate_stability_limit(Simulation& sim) {
                   const double dx = p.x0[i] - p.x0[j], dy = p.y0[i] - p.y0[j];
                   const double r2 = dx * dx + dy * dy, r = std::sqrt(r2);
                   const double vr = (vx[i] - vx[j]) * dx + (vy[i] - vy[j]) * dy;
-                  const double coef = av.alpha * 0.5 * (p.cs[i] + p.cs[j]) * h /
-                                      ((r2 + eta2) * 0.5 * (p.rho0[i] + p.rho0[j]));
+                  // Graded particles: the pair's h_ij (total_lagrangian.hpp).
+                  const double hij = rp.hp.empty() ? h : 0.5 * (rp.hp[i] + rp.hp[j]);
+                  const double e2 = rp.hp.empty() ? eta2 : std::pow(av.eta_over_h * hij, 2);
+                  const double coef = av.alpha * 0.5 * (p.cs[i] + p.cs[j]) * hij /
+                                      ((r2 + e2) * 0.5 * (p.rho0[i] + p.rho0[j]));
                   const double g = rp.dw0[k] / r;  // grad_i W_ij = g (dx, dy)
                   const double sx = coef * vr * g * dx, sy = coef * vr * g * dy;
                   ax[i] -= p.mass[j] * sx;  // a = -D v with D positive semi-definite

@@ -49,9 +49,18 @@ double max_signal_speed(const Simulation& sim) {
   return s;
 }
 
+// The smallest smoothing length of the scene: graded particles are limited
+// by their finest (h_over_dx times the smallest spacing); a lattice's is h.
+double finest_h(const Simulation& sim) {
+  const Particles& p = sim.particles;
+  if (p.n == 0) return sim.h();
+  const double s = *std::min_element(p.spacing.begin(), p.spacing.end());
+  return s == sim.discretization.dx ? sim.h() : sim.discretization.h_over_dx * s;
+}
+
 TimeStepChoice choose_time_step(Simulation& sim, const TimeStepRequest& req) {
   TimeStepChoice c;
-  const double h = sim.h();
+  const double h = finest_h(sim);
   c.signal_speed = max_signal_speed(sim);
   const StabilityLimit limit = estimate_stability_limit(sim);
   c.dt_limit = limit.dt_limit;

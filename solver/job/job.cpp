@@ -53,6 +53,24 @@ Discretization read_discretization(const nlohmann::json& d) {
                                       : 0.0;
   out.h_over_dx =
       d.contains("h_over_dx") ? d.at("h_over_dx").get<double>() : default_h_over_dx(out.kernel);
+  if (d.contains("particles")) {
+    out.layout = d.at("particles").get<std::string>() == "lattice" ? ParticleLayout::Lattice
+                                                                   : ParticleLayout::BodyFitted;
+  }
+  if (d.contains("fine_spacing_m") && d.contains("fine_spacing_mm")) {
+    refuse("/discretization/fine_spacing_mm",
+           "give the fine spacing once: fine_spacing_m or fine_spacing_mm, not both");
+  }
+  out.fine_dx = d.contains("fine_spacing_m")    ? d.at("fine_spacing_m").get<double>()
+                : d.contains("fine_spacing_mm") ? 1e-3 * d.at("fine_spacing_mm").get<double>()
+                                                : 0.0;
+  if (d.contains("grading")) out.grading = d.at("grading").get<double>();
+  if (out.layout == ParticleLayout::Lattice && (out.fine_dx > 0.0 || d.contains("grading"))) {
+    refuse(d.contains("grading")          ? "/discretization/grading"
+           : d.contains("fine_spacing_m") ? "/discretization/fine_spacing_m"
+                                          : "/discretization/fine_spacing_mm",
+           "a lattice has one spacing: grading needs \"particles\": \"body_fitted\"");
+  }
   return out;
 }
 
@@ -104,6 +122,8 @@ Scene build_scene(const nlohmann::json& job, const Discretization& disc) {
   if (type == "hertz") return scenes::build_hertz(in);
   if (type == "rack_pinion") return scenes::build_rack_pinion(in);
   if (type == "tension_strip") return scenes::build_tension_strip(in);
+  if (type == "plate_with_hole") return scenes::build_plate_with_hole(in);
+  if (type == "thick_cylinder") return scenes::build_thick_cylinder(in);
   refuse("/scene/type", "is not a scene this build knows");
 }
 
@@ -161,6 +181,15 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads, int max_threads)
   }
   Simulation& sim = out.scene.sim;
   sim.method = read_method(job.at("method"));
+  const auto [finest, coarsest] =
+      std::minmax_element(sim.particles.spacing.begin(), sim.particles.spacing.end());
+  if (sim.method.formulation == Formulation::UpdatedLagrangian && sim.particles.n > 0 &&
+      *finest != *coarsest) {
+    refuse("/method/formulation",
+           "graded particles (a fine spacing below the bulk one) need the total-Lagrangian form: "
+           "the updated-Lagrangian step has one smoothing length; set "
+           "/method/formulation to \"total_lagrangian\" or give no fine spacing");
+  }
   // A total-Lagrangian run never takes an updated-Lagrangian step: free
   // those 29 arrays now rather than at integrate::initialise, before the
   // stable-step estimate below builds the reference pairs beside them (the

@@ -36,6 +36,12 @@ struct Kernel2D {
   double W(double r) const { return norm * Shape::shape(r * inv_h); }
   // dW/dr
   double dW(double r) const { return norm * inv_h * Shape::shape_derivative(r * inv_h); }
+  // The same shape at another smoothing length: a pair of graded particles
+  // takes h_ij = (h_i + h_j) / 2, symmetric, so grad_i W_ij = -grad_j W_ji.
+  static double W_at(double r, double h) { return Shape::norm_2d / (h * h) * Shape::shape(r / h); }
+  static double dW_at(double r, double h) {
+    return Shape::norm_2d / (h * h * h) * Shape::shape_derivative(r / h);
+  }
 };
 
 // Calls fn(Kernel2D<Shape>{h}) with the shape of `type`.

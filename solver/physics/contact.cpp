@@ -49,13 +49,26 @@ constexpr double kPartnersAtOnce = 3.0;
 double contact_time_step_limit(const Simulation& sim) {
   const ContactConfig& c = sim.contact;
   if (!is_penalty(c.model) || sim.bodies.size() < 2) return 0.0;
-  const double dx = sim.discretization.dx, r0 = c.r0_over_dx * dx;
+  // The stiffest pair: the finest spacing and the lightest particles of each
+  // body (a lattice's dx and dx^2; body-fitted outline particles have about
+  // half a cell).
+  const Particles& p = sim.particles;
+  auto lightest = [&](const Body& body) {
+    double v = sim.discretization.dx * sim.discretization.dx;
+    for (std::size_t i = body.begin; i < body.end; ++i) {
+      if (p.spacing[i] != sim.discretization.dx) v = std::min(v, p.mass[i] / p.rho0[i]);
+    }
+    return v;
+  };
+  double dx = sim.discretization.dx;
+  for (std::size_t i = 0; i < p.n; ++i) dx = std::min(dx, p.spacing[i]);
+  const double r0 = c.r0_over_dx * dx;
   double omega2 = 0.0;
   for (std::size_t a = 0; a < sim.bodies.size(); ++a) {
     for (std::size_t b = a + 1; b < sim.bodies.size(); ++b) {
       const Material &ma = sim.bodies[a].material, &mb = sim.bodies[b].material;
       const double e_star = contact_modulus(ma, mb);
-      const double va = dx * dx, vb = dx * dx;
+      const double va = lightest(sim.bodies[a]), vb = lightest(sim.bodies[b]);
       const double vol = 2.0 * va * vb / (va + vb);
       // Stiffness at the deepest overlap we tolerate (r0/2) for Hertz; the
       // linear law has one stiffness.
@@ -114,8 +127,8 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
   Particles& p = sim.particles;
   const NeighbourList& nl = sim.contacts;
   const ContactConfig& c = sim.contact;
-  const double dx = sim.discretization.dx, r0 = c.r0_over_dx * dx;
   const bool surface = c.model == ContactModel::Surface;
+  const double* spacing = p.spacing.data();
   const double* normal_x = sim.contact_state.normal_x.data();
   const double* normal_y = sim.contact_state.normal_y.data();
   const std::uint32_t* candidates = sim.contact_state.candidates.data();
@@ -129,6 +142,10 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
     for (std::uint32_t k = nl.rows[i]; k < nl.rows[i + 1]; ++k) {
       const std::uint32_t j = nl.j[k];
       const double dxij = p.x[i] - p.x[j], dyij = p.y[i] - p.y[j];
+      // The pair's spacing: the coarser of the two, so that the hat weight
+      // of a fine particle spans its coarse partners' row (graded particles;
+      // a lattice's dx otherwise). Symmetric in i and j.
+      const double dx = std::max(spacing[i], spacing[j]), r0 = c.r0_over_dx * dx;
       double nx, ny, overlap, weight = 1.0;
       if (surface) {
         // True-surface gap (contact_surface.hpp); normals turned with the material.

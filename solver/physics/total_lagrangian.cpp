@@ -294,6 +294,10 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
   const double hg = sim.method.hourglass.coefficient;
   const double alpha = av.alpha, beta = av.beta;
   const double eta2 = (av.eta_over_h * h) * (av.eta_over_h * h);
+  // Graded particles: the pair's own h_ij = (h_i + h_j) / 2 (a predictable
+  // branch: hp is there for a whole run or not at all).
+  const double* hp = rp.hp.empty() ? nullptr : rp.hp.data();
+  const double eta_over_h2 = av.eta_over_h * av.eta_over_h;
   const std::uint32_t* rows = rp.rows.data();
   const std::uint32_t* jj = rp.j.data();
   const double *gix = rp.gix.data(), *giy = rp.giy.data();
@@ -347,8 +351,10 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
         const double r2 = dx * dx + dy * dy;
         const double vr = dvx * dx + dvy * dy;
         const double cs_mean = kUniform ? cs_all : 0.5 * (csi + cs[j]);
-        const double pg = viscosity_pair(dw0[k], h, vr, r2, r2 + eta2, alpha, beta, cs_mean,
-                                         0.5 * (rhoi + rho[j]));
+        const double hij = !kUniform && hp ? 0.5 * (hp[i] + hp[j]) : h;
+        const double q = !kUniform && hp ? r2 + eta_over_h2 * hij * hij : r2 + eta2;
+        const double pg =
+            viscosity_pair(dw0[k], hij, vr, r2, q, alpha, beta, cs_mean, 0.5 * (rhoi + rho[j]));
         if constexpr (kCount) approaching += vr < 0.0 ? 1 : 0;
         const double mj = kUniform ? mass_all : mass[j];
         vsx -= mj * pg * dx;

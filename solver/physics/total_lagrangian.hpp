@@ -41,6 +41,9 @@ struct ReferencePairs {
   Column<double> px, py;
   Column<double> pyx, pyy;
   Column<double> vol0;  // reference volume m/rho0, per particle
+  // Smoothing length per particle, for graded particles only (empty when
+  // every particle has the same h): a pair takes h_ij = (h_i + h_j) / 2.
+  Column<double> hp;
   // One mass and one sound speed for every particle (a scene of one
   // material and one spacing: the paper's gear, the plate). The momentum
   // pass then takes them as constants, two gathers a pair fewer (3 % of the
@@ -97,6 +100,7 @@ struct ReferencePairs {
     double h = 0.0;
     GradientCorrection correction = GradientCorrection::None;
     bool keep_w = false;
+    double h_min = 0.0, h_max = 0.0, h_sum = 0.0;  // per-particle h (graded)
     bool operator==(const Basis&) const = default;
   };
   Basis basis;

@@ -1,6 +1,8 @@
 // The fixed pairs of a total-Lagrangian run and their corrected gradients,
 // built once (total_lagrangian.hpp).
+#include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "solver/core/simulation.hpp"
 #include "solver/physics/kernel_correction.hpp"
@@ -21,8 +23,41 @@ void corrected_gradient(const Correction& c, double w, double dx, double dy, dou
 ReferencePairs::Basis basis_of(const Simulation& sim) {
   // W itself is needed only by hourglass control: without it a pair takes
   // 8 bytes less (docs/speed-accuracy.md, memory per particle).
-  return {sim.particles.n, sim.discretization.kernel, sim.h(), sim.method.correction,
-          sim.method.hourglass.enabled()};
+  ReferencePairs::Basis b{sim.particles.n, sim.discretization.kernel, sim.h(),
+                          sim.method.correction, sim.method.hourglass.enabled()};
+  // Graded particles: their smoothing lengths, summed, tell a changed
+  // grading from the one the pairs were built for.
+  const Particles& p = sim.particles;
+  b.h_min = b.h_max = sim.discretization.h_over_dx * (p.n ? p.spacing[0] : 0.0);
+  for (std::size_t i = 0; i < p.n; ++i) {
+    const double hi = sim.discretization.h_over_dx * p.spacing[i];
+    b.h_min = std::min(b.h_min, hi);
+    b.h_max = std::max(b.h_max, hi);
+    b.h_sum += hi;
+  }
+  if (p.n) b.h = b.h_min;  // the particles' own h (sim.h() for lattices)
+  return b;
+}
+
+// Keeps the pairs within the support of their own smoothing length
+// h_ij = (h_i + h_j) / 2, from a list built for the largest one.
+void keep_pairs_within(const Particles& p, const Column<double>& h, double support,
+                       std::vector<std::uint32_t>& rows, std::vector<std::uint32_t>& js) {
+  std::size_t out = 0;
+  std::uint32_t begin = rows[0];
+  for (std::size_t i = 0; i + 1 < rows.size(); ++i) {
+    const std::uint32_t end = rows[i + 1];
+    for (std::uint32_t k = begin; k < end; ++k) {
+      const std::uint32_t j = js[k];
+      const double dx = p.x0[i] - p.x0[j], dy = p.y0[i] - p.y0[j];
+      const double reach = support * 0.5 * (h[i] + h[j]);
+      if (dx * dx + dy * dy < reach * reach) js[out++] = j;
+    }
+    begin = end;
+    rows[i + 1] = static_cast<std::uint32_t>(out);
+  }
+  js.resize(out);
+  js.shrink_to_fit();
 }
 
 // The pairs, their kernel values and corrected gradients. The per-particle
@@ -33,13 +68,24 @@ void build_pairs(Simulation& sim, const ReferencePairs::Basis& basis) {
   Particles& p = sim.particles;
   ReferencePairs& rp = sim.reference;
   rp = ReferencePairs();  // what an earlier basis built, freed first
-  with_kernel(basis.kernel, basis.h, [&](const auto& kernel) {
+  // One smoothing length (lattices, even body-fitted particles), or one per
+  // particle (graded): then a pair takes h_ij = (h_i + h_j) / 2.
+  const bool graded = basis.h_min != basis.h_max;
+  rp.hp.clear();
+  if (graded) {
+    rp.hp.resize(p.n);
+    for (std::size_t i = 0; i < p.n; ++i) rp.hp[i] = sim.discretization.h_over_dx * p.spacing[i];
+  }
+  with_kernel(basis.kernel, graded ? basis.h_max : basis.h, [&](const auto& kernel) {
+    using K = std::decay_t<decltype(kernel)>;
     {
       NeighbourList list;  // reference positions: each pair once, j > i
       list.build(p, kernel.radius, PairSelection::SameBody, /*reference=*/true, sim.threads);
       rp.rows = std::move(list.rows);
       rp.j = std::move(list.j);
     }
+    if (graded) keep_pairs_within(p, rp.hp, K::shape_type::support, rp.rows, rp.j);
+    auto h_of = [&](std::uint32_t i, std::uint32_t j) { return 0.5 * (rp.hp[i] + rp.hp[j]); };
     const std::size_t n = p.n, m = rp.pairs();
     rp.w0.assign(basis.keep_w ? m : 0, 0.0);
     rp.dw0.assign(m, 0.0);
@@ -60,15 +106,15 @@ void build_pairs(Simulation& sim, const ReferencePairs::Basis& basis) {
           const std::uint32_t j = rp.j[k];
           const double dx = p.x0[i] - p.x0[j], dy = p.y0[i] - p.y0[j];
           const double r = std::sqrt(dx * dx + dy * dy);
-          if (basis.keep_w) rp.w0[k] = kernel.W(r);
-          rp.dw0[k] = kernel.dW(r);
+          if (basis.keep_w) rp.w0[k] = graded ? K::W_at(r, h_of(i, j)) : kernel.W(r);
+          rp.dw0[k] = graded ? K::dW_at(r, h_of(i, j)) : kernel.dW(r);
           mom[i].add(-rp.vol0[j] * rp.dw0[k] / r, dx, dy, quadratic);
           mom[j].add(-rp.vol0[i] * rp.dw0[k] / r, -dx, -dy, quadratic);
         }
       }
       for (std::size_t i = 0; i < n; ++i) {
         if (requested != GradientCorrection::None) {
-          corr[i] = correction_from_moments(mom[i], requested, basis.h);
+          corr[i] = correction_from_moments(mom[i], requested, graded ? rp.hp[i] : basis.h);
         }
         p.correction_order[i] = static_cast<std::uint8_t>(corr[i].order);
       }
@@ -119,7 +165,7 @@ void start_state(Simulation& sim) {
     for (std::size_t i = 0; i < n; ++i) {
       all = all && p.mass[i] == p.mass[0] && p.cs[i] == p.cs[0];
     }
-    rp.uniform = {all, p.mass[0], p.cs[0]};
+    rp.uniform = {all && rp.hp.empty(), p.mass[0], p.cs[0]};
   }
   // Planned for these rows at the first pair loop.
   rp.deformation_chunks = RowChunks();

@@ -2,8 +2,12 @@
 // Scene builders, one per scene type. Each takes the job's `scene` object
 // (validated, defaults applied) and the discretisation, whose spacing may be
 // left open (0) for the scene to choose its default.
+#include <functional>
+
 #include <nlohmann/json.hpp>
 
+#include "solver/geometry/region.hpp"
+#include "solver/geometry/spacing_field.hpp"
 #include "solver/scene/scene.hpp"
 
 namespace gearsph::scenes {
@@ -17,22 +21,37 @@ struct SceneInput {
 
 Material read_material(const nlohmann::json& material);
 
-Scene build_plate(const SceneInput& in);          // validation.md section 5
-Scene build_strip_wave(const SceneInput& in);     // validation.md section 2
-Scene build_spinning_disk(const SceneInput& in);  // validation.md section 4
-Scene build_bar_impact(const SceneInput& in);     // validation.md section 3
-Scene build_hertz(const SceneInput& in);          // validation.md section 6
-Scene build_rack_pinion(const SceneInput& in);    // the paper's gear case
-Scene build_tension_strip(const SceneInput& in);  // stability study: tensile instability
+Scene build_plate(const SceneInput& in);            // validation.md section 5
+Scene build_strip_wave(const SceneInput& in);       // validation.md section 2
+Scene build_spinning_disk(const SceneInput& in);    // validation.md section 4
+Scene build_bar_impact(const SceneInput& in);       // validation.md section 3
+Scene build_hertz(const SceneInput& in);            // validation.md section 6
+Scene build_rack_pinion(const SceneInput& in);      // the paper's gear case
+Scene build_tension_strip(const SceneInput& in);    // stability study: tensile instability
+Scene build_plate_with_hole(const SceneInput& in);  // validation.md section 10: Kirsch
+Scene build_thick_cylinder(const SceneInput& in);   // validation.md section 10: Lame
 
 // Common helpers for builders.
 void add_body(Simulation& sim, const std::string& name, const Material& material);
 // Adds one particle to the last body (mass rho0 dx^2 per unit thickness, or
-// rho0 * volume when a volume is given).
-std::size_t add_particle(Simulation& sim, double x, double y, int motion, double volume = 0.0);
+// rho0 * volume when a volume is given; spacing dx, or the one given).
+std::size_t add_particle(Simulation& sim, double x, double y, int motion, double volume = 0.0,
+                         double spacing = 0.0);
 // Closes the last body's particle range.
 void end_body(Simulation& sim);
 // Domain: the particles' bounding box grown by `margin` on every side.
 Box grown_bounds(const Particles& p, double margin);
+
+// The layout a scene uses: the job's, or `scene_default`. Scenes that cannot
+// place body-fitted particles pass `fitted_ok` false and get a JobError.
+ParticleLayout particle_layout(const Discretization& d, ParticleLayout scene_default,
+                               bool fitted_ok = true);
+// Fills `region` with body-fitted particles graded by `spacing` and adds
+// them to the last body (volume: the clipped Voronoi cell), marking the body
+// fitted; motion_of(x, y) gives each particle's motion index. Returns the
+// relaxation's iterations.
+int add_body_fitted(Simulation& sim, const geometry::Region& region,
+                    const geometry::SpacingField& spacing,
+                    const std::function<int(double, double)>& motion_of);
 
 }  // namespace gearsph::scenes

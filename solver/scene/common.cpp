@@ -1,5 +1,6 @@
 #include <algorithm>
 
+#include "solver/geometry/body_fitted.hpp"
 #include "solver/scene/builders.hpp"
 
 namespace gearsph::scenes {
@@ -20,12 +21,14 @@ void add_body(Simulation& sim, const std::string& name, const Material& material
   sim.bodies.push_back(b);
 }
 
-std::size_t add_particle(Simulation& sim, double x, double y, int motion, double volume) {
+std::size_t add_particle(Simulation& sim, double x, double y, int motion, double volume,
+                         double spacing) {
   const Material& mat = sim.bodies.back().material;
   const double dx = sim.discretization.dx;
   const std::size_t i = sim.particles.n;
   const double v = volume > 0.0 ? volume : dx * dx;
-  sim.particles.add(x, y, mat.rho0 * v, mat.rho0, static_cast<int>(sim.bodies.size() - 1), motion);
+  sim.particles.add(x, y, mat.rho0 * v, mat.rho0, static_cast<int>(sim.bodies.size() - 1), motion,
+                    spacing > 0.0 ? spacing : dx);
   sim.particles.cs[i] = mat.p_wave_speed();
   return i;
 }
@@ -47,6 +50,34 @@ Box grown_bounds(const Particles& p, double margin) {
   b.x_max += margin;
   b.y_max += margin;
   return b;
+}
+
+ParticleLayout particle_layout(const Discretization& d, ParticleLayout scene_default,
+                               bool fitted_ok) {
+  const ParticleLayout l = d.layout == ParticleLayout::SceneDefault ? scene_default : d.layout;
+  if (l == ParticleLayout::BodyFitted && !fitted_ok) {
+    throw JobError("/discretization/particles",
+                   "this scene places its particles on a lattice only (its bodies are "
+                   "rectangles, which a lattice fits exactly)");
+  }
+  if (l == ParticleLayout::Lattice && (d.fine_dx > 0.0 || d.grading > 0.0)) {
+    throw JobError("/discretization/particles",
+                   "a lattice has one spacing: a fine spacing or a grading needs "
+                   "\"particles\": \"body_fitted\"");
+  }
+  return l;
+}
+
+int add_body_fitted(Simulation& sim, const geometry::Region& region,
+                    const geometry::SpacingField& spacing,
+                    const std::function<int(double, double)>& motion_of) {
+  const geometry::BodyFittedParticles b = geometry::fill_body_fitted(region, spacing);
+  for (std::size_t i = 0; i < b.points.size(); ++i) {
+    const geometry::Point q = b.points[i];
+    add_particle(sim, q.x, q.y, motion_of(q.x, q.y), b.volume[i], b.spacing[i]);
+  }
+  sim.bodies.back().fitted = true;
+  return b.iterations;
 }
 
 }  // namespace gearsph::scenes

@@ -29,12 +29,6 @@ double deg(double d) {
   return d * kPi / 180.0;
 }
 
-// In-plane maximum principal stress of particle i (tension positive).
-double max_principal(const Particles& p, std::size_t i) {
-  const double sx = p.sigma_xx(i), sy = p.sigma_yy(i), sxy = p.sigma_xy(i);
-  return 0.5 * (sx + sy) + std::sqrt(0.25 * (sx - sy) * (sx - sy) + sxy * sxy);
-}
-
 std::size_t nearest(const Particles& p, std::size_t begin, std::size_t end, Point q) {
   std::size_t best = begin;
   double d2 = 1e300;
@@ -103,8 +97,7 @@ std::vector<int> choose_rack_offsets(const nlohmann::json& choice, const GearLay
 // and transmission error, the hub's rate and torque, the contact force,
 // and per modelled tooth its root stress (fillet particles and section
 // bending) and contact force. Particles of no tooth have tooth_of = INT_MIN.
-void add_gear_histories(Scene& scene, const GearLayout& L, const std::vector<int>& tooth_of,
-                        const std::vector<std::pair<std::size_t, std::size_t>>& root_particles) {
+void add_gear_histories(Scene& scene, const GearLayout& L, const std::vector<int>& tooth_of) {
   const Particles& p = scene.sim.particles;
   const double b = L.face_width_m, r = L.pitch_radius;
   const std::size_t rb0 = scene.sim.bodies[1].begin, rb1 = scene.sim.bodies[1].end;
@@ -144,20 +137,37 @@ void add_gear_histories(Scene& scene, const GearLayout& L, const std::vector<int
                                         ? b * std::hypot(cs.force_x[1], cs.force_y[1])
                                         : 0.0;
                            }});
+  // Per tooth, the stress recovered on its true fillets and across its
+  // critical section (RootMonitor: once per row, whatever the columns).
+  constexpr double kDeg = 180.0 / kPi;
   for (std::size_t t = 0; t < L.pinion_teeth.size(); ++t) {
     const int k = L.pinion_teeth[t];
-    const auto [ia, ib] = root_particles[t];
-    scene.columns.push_back(
-        {"root_stress_t" + std::to_string(k) + "_Pa", [ia = ia, ib = ib](const Simulation& s2) {
-           return std::max(max_principal(s2.particles, ia), max_principal(s2.particles, ib));
-         }});
-    // Nominal bending stress 6 M / s^2 on the critical section: smoother
-    // than a single fillet particle, and what ISO's Y_F describes.
-    scene.columns.push_back(
-        {"root_bending_t" + std::to_string(k) + "_Pa",
-         [sec = L.tooth_sections[t], cx = L.cx, cy = L.cy](const Simulation& s2) {
-           return section_loads(sec, s2, s2.motions[1].angle, cx, cy).nominal_bending_stress;
-         }});
+    const std::string sk = "_t" + std::to_string(k);
+    auto col = [&](const std::string& name, auto read) {
+      scene.columns.push_back({name, [roots = L.roots, t, read](const Simulation& s2) {
+                                 return read(roots->at(s2)[t]);
+                               }});
+    };
+    // The larger sigma_1 at the two 30-degree points (ISO 6336-3's section).
+    col("root_stress" + sk + "_Pa", [](const ToothRootState& st) { return st.root_stress_Pa; });
+    // Nominal bending stress 6 M / s^2 on the critical section: what ISO's
+    // Y_F describes, before the fillet's stress concentration Y_S.
+    col("root_bending" + sk + "_Pa",
+        [](const ToothRootState& st) { return st.section_nominal_bending_Pa; });
+    col("fillet_tension_peak" + sk + "_Pa",
+        [](const ToothRootState& st) { return st.fillet.tension.stress_Pa; });
+    col("fillet_tension_peak_radius" + sk + "_m",
+        [](const ToothRootState& st) { return st.fillet.tension.radius_m; });
+    col("fillet_tension_peak_angle" + sk + "_deg",
+        [kDeg](const ToothRootState& st) { return kDeg * st.fillet.tension.angle_rad; });
+    col("fillet_iso30" + sk + "_Pa",
+        [](const ToothRootState& st) { return st.fillet.tension.at_iso30_Pa; });
+    col("fillet_compression_peak" + sk + "_Pa",
+        [](const ToothRootState& st) { return st.fillet.compression.stress_Pa; });
+    col("fillet_compression_peak_radius" + sk + "_m",
+        [](const ToothRootState& st) { return st.fillet.compression.radius_m; });
+    col("fillet_compression_peak_angle" + sk + "_deg",
+        [kDeg](const ToothRootState& st) { return kDeg * st.fillet.compression.angle_rad; });
     scene.columns.push_back(
         {"tooth_force_t" + std::to_string(k) + "_N", [tooth_of, k, b](const Simulation& s2) {
            const Particles& q = s2.particles;
@@ -228,14 +238,30 @@ Scene build_rack_pinion(const SceneInput& in) {
   scene.type = "rack_pinion";
   Simulation& sim = scene.sim;
   sim.discretization = in.discretization;
-  if (sim.discretization.dx <= 0) sim.discretization.dx = 1e-3;  // the paper's 1 mm
-  const double dx = sim.discretization.dx;
+  // Spacings follow the gear, not a number: the bulk a quarter of the
+  // module (the paper's 1 mm at module 4), and body-fitted particles a fifth
+  // of the root fillet radius at the fillets and active flanks, where the
+  // stress varies over that length (docs/gears.md measures the choice).
+  const bool fitted =
+      particle_layout(in.discretization, ParticleLayout::BodyFitted) == ParticleLayout::BodyFitted;
+  Discretization& disc = sim.discretization;
+  if (disc.dx <= 0) disc.dx = 0.25 * L.module_m;
+  const double dx = disc.dx;
+  const double fine =
+      fitted ? (disc.fine_dx > 0 ? disc.fine_dx : std::min(dx, L.iso_pitch.rho_F / 5.0)) : dx;
+  const double grading = disc.grading > 0 ? disc.grading : 0.25;
   const double support = kernel_support(sim.discretization.kernel) * sim.h();
   if (dx > 0.5 * L.module_m) {
     throw JobError("/discretization", "the spacing must be at most half the module (" +
                                           std::to_string(0.5 * L.module_m) +
                                           " m) to put particles across a tooth");
   }
+  if (fine > dx) {
+    throw JobError(disc.fine_dx > 0 ? "/discretization/fine_spacing_m" : "/discretization",
+                   "the fine spacing must not exceed the bulk spacing");
+  }
+  L.quasi_static = s.at("quasi_static").get<bool>();
+  const bool clockwise = L.omega <= 0;
 
   // --- Which teeth engage: the engagement window of a tooth axis, in
   // pitches from the mesh position, is the path of contact seen from the
@@ -249,7 +275,13 @@ Scene build_rack_pinion(const SceneInput& in) {
   // Clockwise (omega < 0): teeth arrive from the +x side (positive axis
   // angles) and leave to -x; the window is [-after, before]. Mirror for CCW.
   const double lo = L.omega <= 0 ? -after : -before, hi = L.omega <= 0 ? before : after;
-  std::vector<int> pinion_teeth = choose_pinion_teeth(pj.at("modelled_teeth"), L, turn, lo, hi);
+  // A static check loads tooth 0 alone, as ISO 6336's single-pair numbers
+  // assume: "auto" then models it with its two neighbours (the rim beside
+  // its fillets), against the one rack tooth that meets its driving flank.
+  const bool static_auto = L.quasi_static && pj.at("modelled_teeth") == "auto";
+  std::vector<int> pinion_teeth =
+      static_auto ? std::vector<int>{-1, 0, 1}
+                  : choose_pinion_teeth(pj.at("modelled_teeth"), L, turn, lo, hi);
   if (pinion_teeth.empty()) pinion_teeth.push_back(0);
   if (static_cast<int>(pinion_teeth.size()) > L.teeth) {
     pinion_teeth.resize(static_cast<std::size_t>(L.teeth));
@@ -259,8 +291,12 @@ Scene build_rack_pinion(const SceneInput& in) {
 
   // Rack teeth, swept by the rack's own travel.
   const double rack_turn = L.rack_velocity * L.end_s / pinion.spec().tool.pitch();
+  // The rack tooth left of tooth 0 (space 1) meets a clockwise pinion's
+  // driving flank, the one right of it (space 0) a counter-clockwise one's.
   const std::vector<int> rack_offsets =  // u - 1/2
-      choose_rack_offsets(rj.at("modelled_teeth"), L, rack_turn, lo, hi);
+      L.quasi_static && rj.at("modelled_teeth") == "auto"
+          ? std::vector<int>{clockwise ? -1 : 0}
+          : choose_rack_offsets(rj.at("modelled_teeth"), L, rack_turn, lo, hi);
   const int m_min = rack_offsets.front(), m_max = rack_offsets.back();
   for (int m = m_min; m <= m_max; ++m) L.rack_teeth.push_back(m - m_min);
 
@@ -281,12 +317,38 @@ Scene build_rack_pinion(const SceneInput& in) {
   // -m_min. Close the play on the driving flanks so the teeth start in
   // contact (the pinion's pitch line is 2 % faster than the rack: it catches
   // up at once), or keep it shared ("centred").
-  geometry::MeshPlacement place = geometry::place_in_mesh(pinion, rack, {0.0, 0.0}, 0, -m_min);
   const double play = ps.backlash_m + rs.backlash_m;
   double phase = 0.0;
   if (s.at("mesh_phase").get<std::string>() == "contact") {
     phase = (L.omega <= 0 ? -1.0 : 1.0) * 0.5 * play / r;
   }
+  // A static check is placed by its contact point (docs/gears.md): the rack
+  // travels, and the pinion rolls with it, until tooth 0's driving flank
+  // meets the rack at that radius.
+  double travel = 0.0;
+  if (s.contains("contact_point") && !L.quasi_static) {
+    throw JobError("/scene/contact_point",
+                   "places a static check: it needs \"quasi_static\": true (a dynamic run "
+                   "starts where the mesh is)");
+  }
+  if (L.quasi_static) {
+    const nlohmann::json cp = s.contains("contact_point") ? s.at("contact_point") : "pitch";
+    L.contact_point = cp.is_string() ? cp.get<std::string>() : "radius";
+    L.load_radius = cp.is_string() ? gear::path_point_radius(pinion, L.path, cp.get<std::string>())
+                                   : 1e-3 * cp.get<double>();
+    const double rb0 = pinion.base_radius();
+    const double g =
+        L.load_radius > rb0 ? std::sqrt(L.load_radius * L.load_radius - rb0 * rb0) : -1;
+    if (!(g >= L.path.start_from_T - 1e-12 && g <= L.path.end_from_T + 1e-12)) {
+      throw JobError("/scene/contact_point",
+                     "the contact radius must lie on the path of contact, from " +
+                         std::to_string(1e3 * std::hypot(rb0, L.path.start_from_T)) + " to " +
+                         std::to_string(1e3 * L.tip_radius) + " mm on this pinion");
+    }
+    travel = geometry::travel_for_contact(pinion, 0, L.load_radius, phase, clockwise);
+  }
+  geometry::MeshPlacement place =
+      geometry::place_in_mesh(pinion, rack, {0.0, 0.0}, 0, -m_min, travel);
   place.pinion.angle += phase;
   L.cx = 0.0;
   L.cy = 0.0;
@@ -315,18 +377,69 @@ Scene build_rack_pinion(const SceneInput& in) {
                                     : Motion::rotation("pinion hub", L.cx, L.cy, L.omega));
   sim.motions.push_back(Motion::guided_x("rack back"));
   const Point origin{0.0, 0.0};
+  const double back_y = place.rack.apply({0.0, rack.back_y()}).y;
+  auto pinion_motion = [&](double x, double y) {
+    return std::hypot(x - L.cx, y - L.cy) < r_drive ? 1 : 0;
+  };
+  auto rack_motion = [&](double, double y) { return y < back_y + support ? 2 : 0; };
+  // The force the rack puts on tooth k's driving flank, roughly: along +x
+  // on tooth 0 of a clockwise pinion, turned with the tooth.
+  auto load_on_tooth = [&](int k) {
+    return geometry::rotate({clockwise ? 1.0 : -1.0, 0.0}, k * pitch_angle);
+  };
+  L.fitted = fitted;
+  L.spacing = dx;
+  L.fine_spacing = fine;
   add_body(sim, "pinion", mat_p);
-  for (const Point& q : geometry::fill_lattice(pinion_poly, dx, origin)) {
-    const double rad = std::hypot(q.x - L.cx, q.y - L.cy);
-    const bool hub = rad < r_drive;
-    if (whole_pinion && rad < r_inner) continue;  // bore
-    add_particle(sim, q.x, q.y, hub ? 1 : 0);
+  if (fitted) {
+    // Fine at every modelled tooth's two fillets and its driving flank.
+    geometry::SpacingField field(dx, grading);
+    for (int k : pinion_teeth) {
+      const gear::ToothFillets f =
+          gear::tooth_fillets(pinion, k, place.pinion, load_on_tooth(k), 0.25 * fine);
+      field.add_feature(f.tension.points, fine);
+      field.add_feature(f.compression.points, fine);
+      field.add_feature(gear::loaded_flank(pinion, k, place.pinion, load_on_tooth(k)), fine);
+    }
+    std::vector<geometry::Polygon> bore;
+    if (whole_pinion && r_inner > 0.0) {
+      bore.push_back(geometry::circle({L.cx, L.cy}, r_inner, ps.chord_tolerance_m));
+    }
+    add_body_fitted(sim, geometry::make_region(pinion_poly, bore), field, pinion_motion);
+  } else {
+    for (const Point& q : geometry::fill_lattice(pinion_poly, dx, origin)) {
+      if (whole_pinion && std::hypot(q.x - L.cx, q.y - L.cy) < r_inner) continue;  // bore
+      add_particle(sim, q.x, q.y, pinion_motion(q.x, q.y));
+    }
   }
   end_body(sim);
   add_body(sim, "rack", mat_r);
-  const double back_y = place.rack.apply({0.0, rack.back_y()}).y;
-  for (const Point& q : geometry::fill_lattice(rack_poly, dx, origin)) {
-    add_particle(sim, q.x, q.y, q.y < back_y + support ? 2 : 0);
+  if (fitted) {
+    // Fine along the rack flanks that the pinion's driving flanks meet:
+    // outline edges facing them (outward normal against the load's x).
+    geometry::SpacingField field(dx, grading);
+    const double side = clockwise ? 1.0 : -1.0;
+    std::vector<Point> run;
+    const std::size_t m = rack_poly.size();
+    for (std::size_t k = 0; k <= m; ++k) {
+      const Point a = rack_poly[k % m], b = rack_poly[(k + 1) % m];
+      const Point e = b - a;
+      const double len = geometry::norm(e);
+      const bool facing =
+          len > 0 && side * e.y / len > 0.5 && -e.x / len > 0.05;  // n = (e.y, -e.x)
+      if (facing && k < m) {
+        if (run.empty()) run.push_back(a);
+        run.push_back(b);
+      } else if (!run.empty()) {
+        field.add_feature(run, fine);
+        run.clear();
+      }
+    }
+    add_body_fitted(sim, geometry::make_region(rack_poly), field, rack_motion);
+  } else {
+    for (const Point& q : geometry::fill_lattice(rack_poly, dx, origin)) {
+      add_particle(sim, q.x, q.y, rack_motion(q.x, q.y));
+    }
   }
   end_body(sim);
   Particles& p = sim.particles;
@@ -381,64 +494,38 @@ Scene build_rack_pinion(const SceneInput& in) {
     sim.load_ramp_s = 10.0 * 2.0 * kPi / omega_mesh;
   }
 
-  // --- Bookkeeping per pinion tooth: which particles belong to it, and the
-  // particles at its two 30-degree fillet points (ISO 6336-3 critical section).
-  const gear::ThirtyDegreePoints t30 = gear::thirty_degree_points(pinion);
+  // --- Bookkeeping per pinion tooth: which particles belong to it, and its
+  // fillets and critical section, where the stress is recovered.
   // Particles of no modelled tooth (hub, rack) are marked with a number no
   // tooth has (teeth are numbered -z..z around the mesh).
   constexpr int kNoTooth = std::numeric_limits<int>::min();
   std::vector<int> tooth_of(p.n, kNoTooth);
-  std::vector<std::pair<std::size_t, std::size_t>> root_particles;
-  for (int k : pinion_teeth) {
-    // Generating frame (axis +y) -> gear frame (tooth k) -> world.
-    const double to_gear = kPi + k * pitch_angle;
-    const Point right = place.pinion.apply(geometry::rotate(t30.right, to_gear));
-    const Point left = place.pinion.apply(geometry::rotate(t30.left, to_gear));
-    root_particles.push_back({nearest(p, pin_body.begin, pin_body.end, right),
-                              nearest(p, pin_body.begin, pin_body.end, left)});
-  }
+  const double turned = place.pinion.angle;  // tooth 0's axis is at -pi/2 + turned
   for (std::size_t i = pin_body.begin; i < pin_body.end; ++i) {
     if (p.motion[i] != 0) continue;
-    const double ang = std::atan2(p.y[i] - L.cy, p.x[i] - L.cx) - (-0.5 * kPi + phase);
+    const double ang = std::atan2(p.y[i] - L.cy, p.x[i] - L.cx) - (-0.5 * kPi + turned);
     const int k = static_cast<int>(std::lround(ang / pitch_angle));
     for (int m : pinion_teeth) {
       if (((k - m) % L.teeth + L.teeth) % L.teeth == 0) tooth_of[i] = m;
     }
   }
-  // Each tooth's critical section: the particles of the tooth within half a
-  // spacing of the chord between its 30-degree points (for tooth 0, pointing
-  // down at the rack, one lattice row: the chord is nearly horizontal).
-  for (int k : pinion_teeth) {
-    const double to_gear = kPi + k * pitch_angle;
-    const Point right = place.pinion.apply(geometry::rotate(t30.right, to_gear));
-    const Point left = place.pinion.apply(geometry::rotate(t30.left, to_gear));
-    GearLayout::Section sec;
-    sec.cx = 0.5 * (left.x + right.x);
-    sec.cy = 0.5 * (left.y + right.y);
-    const double len = std::hypot(right.x - left.x, right.y - left.y);
-    sec.ux = (right.x - left.x) / len;
-    sec.uy = (right.y - left.y) / len;
-    sec.width = len;
-    sec.dx = dx;
-    for (std::size_t i = pin_body.begin; i < pin_body.end; ++i) {
-      const double rx = p.x[i] - sec.cx, ry = p.y[i] - sec.cy;
-      const double along = rx * sec.ux + ry * sec.uy, across = -rx * sec.uy + ry * sec.ux;
-      if (tooth_of[i] == k && std::abs(across) <= 0.5 * dx && std::abs(along) <= 0.5 * len + dx) {
-        sec.particles.push_back(i);
-      }
-    }
-    L.tooth_sections.push_back(sec);
-    if (k == 0) L.root_section = sec;
-  }
   for (std::size_t i = pin_body.begin; i < pin_body.end; ++i) {
     if (tooth_of[i] == 0) L.tooth0_particles.push_back(i);
   }
+  {
+    // Fillet curves sampled at a fifth of the finest spacing there.
+    std::vector<gear::ToothFillets> fillets;
+    for (int k : pinion_teeth) {
+      fillets.push_back(gear::tooth_fillets(pinion, k, place.pinion, load_on_tooth(k), 0.2 * fine));
+    }
+    L.roots = std::make_shared<const RootMonitor>(sim, 0, pinion_teeth, std::move(fillets), 1);
+  }
 
-  add_gear_histories(scene, L, tooth_of, root_particles);
+  add_gear_histories(scene, L, tooth_of);
   // Probe particles: the tooth in mesh at its pitch circle on the driving
   // flank, the rack tooth it drives, and the middle of the rack's back.
   const double drive_side = L.omega <= 0 ? -1.0 : 1.0;
-  const double flank_angle = -0.5 * kPi + phase + drive_side * pinion.pitch_thickness() / (2 * r);
+  const double flank_angle = -0.5 * kPi + turned + drive_side * pinion.pitch_thickness() / (2 * r);
   const Point pitch_pt{L.cx + r * std::cos(flank_angle), L.cy + r * std::sin(flank_angle)};
   const std::size_t probe_pinion = nearest(p, pin_body.begin, pin_body.end, pitch_pt);
   const std::size_t probe_rack = nearest(p, rack_body.begin, rack_body.end, pitch_pt);

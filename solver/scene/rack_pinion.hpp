@@ -1,6 +1,7 @@
 #pragma once
 // The rack-and-pinion scene (method.md, "The paper's gear case"): what the
 // builder decided, shared with the analysis of the finished run.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -9,6 +10,7 @@
 
 #include "solver/gear/gear_rating.hpp"
 #include "solver/run/history.hpp"
+#include "solver/scene/rack_pinion_roots.hpp"
 
 namespace gearsph {
 struct Simulation;
@@ -39,16 +41,17 @@ struct GearLayout {
   // mesh spring, dv sqrt(k m_rack) (per gear) [N].
   double impact_force_bound_N = 0.0;
   bool quasi_static = false;
-  // ISO 6336-3 critical section of tooth 0 (between its 30-degree points):
-  // the lattice row that lies on it, for the section's bending moment.
-  struct Section {
-    std::vector<std::size_t> particles;
-    double cx = 0, cy = 0;  // chord centre [m]
-    double ux = 1, uy = 0;  // along the chord
-    double width = 0;       // s_Fn [m]
-    double dx = 0;
-  } root_section;
-  std::vector<Section> tooth_sections;  // the same for every modelled tooth, in pinion_teeth order
+  // Static checks: where tooth 0 is loaded ("pitch", "hpstc", "lpstc",
+  // "tip" or "radius") and the radius on the pinion [m].
+  std::string contact_point;
+  double load_radius = 0.0;
+  // Particles: body-fitted (graded from fine_spacing at the fillets and
+  // active flanks to spacing) or a lattice of spacing.
+  bool fitted = false;
+  double spacing = 0.0, fine_spacing = 0.0;
+  // The fillets and critical section of every modelled tooth, with the
+  // stress recovered on them (rack_pinion_roots.hpp).
+  std::shared_ptr<const RootMonitor> roots;
   std::vector<std::size_t> tooth0_particles;
   std::vector<gear::IsoToothForm> iso_by_radius;  // form radius to tip, ascending
   std::string selection;                          // how the modelled teeth were chosen, in words
@@ -59,18 +62,6 @@ struct GearLayout {
 // signal is still varying at the end); 0 if always.
 double velocity_stability_time(const std::vector<double>& t, const std::vector<double>& v,
                                double tolerance);
-
-// Normal force and bending moment on a tooth's root section, from the
-// normal stress of the particles on it, with the section turned by the
-// hub's angle about the pinion centre (cx, cy): 6 |M| / s^2 is the nominal
-// bending stress that ISO 6336-3's Y_F describes.
-struct SectionLoads {
-  double normal_force = 0.0;    // [N/m]
-  double bending_moment = 0.0;  // [N m / m]
-  double nominal_bending_stress = 0.0;
-};
-SectionLoads section_loads(const GearLayout::Section& sec, const Simulation& sim, double angle,
-                           double cx, double cy);
 
 nlohmann::json analyse_rack_pinion(const GearLayout& layout, const History& h,
                                    const Simulation& final_state);

@@ -46,22 +46,18 @@ double max_of(const std::vector<double>& v) {
 
 namespace {
 
-// Bending moment and normal force carried by tooth 0's critical section in
-// the final state, per unit face width: sum over the section's row of
-// sigma_nn dx and sigma_nn s dx (s along the chord from its centre, n the
-// tooth axis). The nominal bending stress 6 M / s_Fn^2 is what ISO 6336-3's
-// form factor Y_F describes before the stress concentration Y_S; unlike the
-// stress of a single particle at the fillet it does not depend on where the
-// lattice cuts the surface.
-nlohmann::json root_section_loads(const GearLayout& L, const Simulation& sim) {
-  const GearLayout::Section& sec = L.root_section;
-  const SectionLoads s = section_loads(sec, sim, sim.motions[1].angle, L.cx, L.cy);
-  return {{"particles", sec.particles.size()},
-          {"chord_m", sec.width},
-          {"normal_force_N_per_m", s.normal_force},
-          {"bending_moment_N", s.bending_moment},
-          {"nominal_bending_stress_Pa", s.nominal_bending_stress},
-          {"mean_normal_stress_Pa", s.normal_force / sec.width}};
+// The fillet curves of one tooth as a gear engineer plots them: stress
+// against arc length from the middle of the tooth space (compression
+// fillet: sigma_3, tension fillet: sigma_1).
+nlohmann::json fillet_curves(const gear::ToothFillets& f, const ToothRootState& r) {
+  return {{"tension",
+           {{"arc_m", f.tension.arc},
+            {"radius_m", f.tension.radius},
+            {"sigma1_Pa", r.fillet.tension_curve}}},
+          {"compression",
+           {{"arc_m", f.compression.arc},
+            {"radius_m", f.compression.radius},
+            {"sigma3_Pa", r.fillet.compression_curve}}}};
 }
 
 // Where the contact load on tooth 0 acts: the contact-force-weighted mean
@@ -95,29 +91,6 @@ gear::IsoToothForm iso_at(const GearLayout& L, double radius) {
 }
 
 }  // namespace
-
-SectionLoads section_loads(const GearLayout::Section& sec, const Simulation& sim, double angle,
-                           double cx, double cy) {
-  const Particles& p = sim.particles;
-  const double c = std::cos(angle), sn = std::sin(angle);
-  // The chord's centre and direction, carried round with the hub.
-  const double ox = cx + c * (sec.cx - cx) - sn * (sec.cy - cy);
-  const double oy = cy + sn * (sec.cx - cx) + c * (sec.cy - cy);
-  const double ux = c * sec.ux - sn * sec.uy, uy = sn * sec.ux + c * sec.uy;
-  const double nx = -uy, ny = ux;
-  SectionLoads out;
-  for (std::size_t i : sec.particles) {
-    const double sxx = p.sigma_xx(i), syy = p.sigma_yy(i), sxy = p.sigma_xy(i);
-    const double snn = nx * nx * sxx + 2.0 * nx * ny * sxy + ny * ny * syy;
-    const double along = (p.x[i] - ox) * ux + (p.y[i] - oy) * uy;
-    // The particles within half a spacing of the chord sample it at one per
-    // spacing on average, whatever its direction on the lattice.
-    out.normal_force += snn * sec.dx;
-    out.bending_moment += snn * along * sec.dx;
-  }
-  out.nominal_bending_stress = 6.0 * std::abs(out.bending_moment) / (sec.width * sec.width);
-  return out;
-}
 
 nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
                                    const Simulation& final_state) {
@@ -231,43 +204,62 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
   }
   a["iso_mesh_stiffness_N_per_mm_um"] = 1e-9 * L.iso_mesh_stiffness;
 
-  // Static check (validation.md 7): with the gear held at its starting
-  // position (tooth 0 centred on the pitch point) tooth 0 alone carries the
-  // load, on its flank where the line of action crosses it (about 25 mm for
-  // the paper's pinion, not the pitch point). Root stress at the end of the
-  // relaxation against ISO 6336-3 with the load where the contact forces put
-  // it, and against Lewis (load at the tip, the classic form).
-  if (L.quasi_static && L.load_N > 0 && h.rows() > 0) {
+  // Static check (validation.md 7): tooth 0 loaded alone at its contact
+  // point (scene.contact_point), relaxed. The fillet stresses recovered on
+  // the true outline against ISO 6336-3 with the load where it was placed
+  // (sigma_F0 = Ft / (b m) Y_F Y_S, Ft tooth 0's share), the nominal bending
+  // of the critical section against ISO's Y_F alone, and Lewis.
+  const auto t0 = std::find(L.pinion_teeth.begin(), L.pinion_teeth.end(), 0);
+  if (L.quasi_static && L.load_N > 0 && h.rows() > 0 && t0 != L.pinion_teeth.end()) {
+    const std::size_t i0 = static_cast<std::size_t>(t0 - L.pinion_teeth.begin());
+    const ToothRootState& root = L.roots->at(final_state)[i0];
     const std::size_t last = h.rows() - 1;
-    const double sigma = h.at(last, static_cast<std::size_t>(h.index("root_stress_t0_Pa")));
     const double tooth_force = h.at(last, static_cast<std::size_t>(h.index("tooth_force_t0_N")));
     const double lewis = L.lewis_Y > 0 ? L.load_N / (b * m * L.lewis_Y) : 0.0;
-    const double load_radius = tooth0_load_radius(L, final_state);
-    const gear::IsoToothForm form = iso_at(L, load_radius);
+    const gear::IsoToothForm form = iso_at(L, L.load_radius);
     // ISO's Ft is the load on the one tooth: tooth 0's share of the rack
-    // force (all of it while no neighbour touches; under a large load the
-    // deflection brings the next pair into contact).
+    // force (all of it when it meets the only rack tooth).
     const double ft0 = tooth_force * std::cos(L.pressure_angle);
     const double iso = ft0 / (b * m) * form.Y_F * form.Y_S;
     const double iso_nominal = ft0 / (b * m) * form.Y_F;
-    const nlohmann::json section = root_section_loads(L, final_state);
-    const double bending = section.at("nominal_bending_stress_Pa").get<double>();
+    const double bending = root.section_nominal_bending_Pa;
+    const double sigma = root.root_stress_Pa;
+    constexpr double kDeg = 180.0 / 3.141592653589793;
+    const double width = L.roots->section_width(i0);
     a["static_check"] = {
-        {"root_section", section},
+        {"contact_point", L.contact_point},
+        {"load_radius_m", L.load_radius},
+        {"measured_load_radius_m", tooth0_load_radius(L, final_state)},
+        {"tooth0_force_N", tooth_force},
+        {"load_carried_by_tooth0", ft0 / L.load_N},
+        {"fillet_tension_peak_Pa", root.fillet.tension.stress_Pa},
+        {"fillet_tension_peak_radius_m", root.fillet.tension.radius_m},
+        {"fillet_tension_peak_angle_deg", kDeg * root.fillet.tension.angle_rad},
+        {"fillet_compression_peak_Pa", root.fillet.compression.stress_Pa},
+        {"fillet_compression_peak_radius_m", root.fillet.compression.radius_m},
+        {"fillet_compression_peak_angle_deg", kDeg * root.fillet.compression.angle_rad},
+        {"fillet_stress_at_iso30_Pa", root.fillet.tension.at_iso30_Pa},
+        {"iso_sigma_F0_Pa", iso},
+        {"iso_Y_F_at_load", form.Y_F},
+        {"iso_Y_S_at_load", form.Y_S},
+        {"fillet_tension_peak_error_vs_iso", (root.fillet.tension.stress_Pa - iso) / iso},
+        {"fillet_iso30_error_vs_iso", (root.fillet.tension.at_iso30_Pa - iso) / iso},
+        {"root_stress_Pa", sigma},
+        {"root_section",
+         {{"chord_m", width},
+          {"normal_force_N_per_m", root.section_normal_force_N_per_m},
+          {"bending_moment_N", root.section_bending_moment_N},
+          {"nominal_bending_stress_Pa", bending},
+          {"mean_normal_stress_Pa", root.section_normal_force_N_per_m / width}}},
         {"nominal_bending_stress_Pa", bending},
         {"iso_nominal_Pa", iso_nominal},
         {"nominal_error_vs_iso", (bending - iso_nominal) / iso_nominal},
-        {"nominal_error_vs_lewis", lewis > 0 ? (bending - lewis) / lewis : 0.0},
-        {"root_stress_Pa", sigma},
-        {"tooth0_force_N", tooth_force},
-        {"load_carried_by_tooth0", tooth_force * std::cos(L.pressure_angle) / L.load_N},
         {"lewis_Pa", lewis},
-        {"load_radius_m", load_radius},
-        {"iso_Y_F_at_load", form.Y_F},
-        {"iso_Y_S_at_load", form.Y_S},
-        {"iso_at_load_Pa", iso},
-        {"error_vs_lewis", lewis > 0 ? (sigma - lewis) / lewis : 0.0},
-        {"error_vs_iso", (sigma - iso) / iso}};
+        {"nominal_error_vs_lewis", lewis > 0 ? (bending - lewis) / lewis : 0.0},
+        {"fillet_curves", fillet_curves(L.roots->fillets(i0), root)},
+        {"particles", L.fitted ? "body_fitted" : "lattice"},
+        {"spacing_m", L.spacing},
+        {"fine_spacing_m", L.fine_spacing}};
     if (a.contains("mesh_stiffness_N_per_mm_um")) {
       a["static_check"]["mesh_stiffness_error_vs_iso"] =
           a["mesh_stiffness_N_per_mm_um"].get<double>() / (1e-9 * L.iso_mesh_stiffness) - 1.0;

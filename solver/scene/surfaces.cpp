@@ -51,7 +51,10 @@ bool counter_clockwise(const Outline& o) {
 
 void from_outline(Simulation& sim, const Body& body, const Outline& o) {
   Particles& p = sim.particles;
-  const double dx = sim.discretization.dx, reach = kSurfaceReachOverDx * dx;
+  // Body-fitted particles: the outline row alone (its particles lie on the
+  // outline's chords, within a hair of it).
+  const double dx = sim.discretization.dx;
+  const double reach = body.fitted ? 1e-6 * dx : kSurfaceReachOverDx * dx;
   const bool ccw = counter_clockwise(o);
   const std::size_t m = o.points.size();
   // Bin the outline's edges by their midpoints on a grid of cells larger
@@ -73,7 +76,7 @@ void from_outline(Simulation& sim, const Body& body, const Outline& o) {
       closest_on_segment(o.points[k], o.points[(k + 1) % m], p.x0[i], p.y0[i], ccw, best);
     });
     if (best.distance <= reach) {
-      p.surf_depth[i] = best.distance;
+      p.surf_depth[i] = body.fitted ? 0.0 : best.distance;
       p.surf_nx[i] = best.nx;
       p.surf_ny[i] = best.ny;
     }

@@ -23,7 +23,7 @@ inline Simulation steel_block(int n, Formulation formulation, GradientCorrection
   sim.threads = threads;
   for (int a = 0; a < n; ++a) {
     for (int c = 0; c < n; ++c) {
-      sim.particles.add((a + 0.5) * dx, (c + 0.5) * dx, mat.rho0 * dx * dx, mat.rho0, 0, 0);
+      sim.particles.add((a + 0.5) * dx, (c + 0.5) * dx, mat.rho0 * dx * dx, mat.rho0, 0, 0, dx);
     }
   }
   for (std::size_t i = 0; i < sim.particles.n; ++i) sim.particles.cs[i] = mat.p_wave_speed();
