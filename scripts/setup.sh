@@ -11,9 +11,13 @@ PACKAGES=(
   build-essential cmake ninja-build pkg-config git clang-format
   # libraries (architecture.md: Beast, nlohmann-json, Eigen, HDF5, SQLite, OSMesa)
   libboost-dev nlohmann-json3-dev libeigen3-dev libhdf5-dev hdf5-tools
+  # JSON Schema validation of job files (header-only, over nlohmann-json)
+  libvalijson-dev
   libsqlite3-dev sqlite3 libosmesa6-dev libpng-dev
   # tests and benchmarks
   libgtest-dev libbenchmark-dev python3-pysph curl
+  # the official JSON-Schema-Test-Suite, run through the job validator
+  json-schema-test-suite
   # results checked with ParaView's own reader (pvpython), rendering fonts
   paraview python3-paraview python3-h5py libfreetype-dev fonts-dejavu-core
   # scale-out (docs/scale-out.md): the PostgreSQL job store's client library,

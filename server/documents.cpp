@@ -59,7 +59,7 @@ nlohmann::json status_document(const JobRecord& job, const std::optional<Progres
   std::int64_t step = job.step;
   double simulated = job.simulated_s, wall = job.wall_s, eta = job.eta_s;
   int progress = job.progress;
-  if (live && job.status == "running") {
+  if (live && job.status == JobStatus::running) {
     step = live->step;
     simulated = live->time_s;
     wall = live->wall_s;
@@ -73,7 +73,7 @@ nlohmann::json status_document(const JobRecord& job, const std::optional<Progres
   d["simulated_s"] = simulated;
   d["end_s"] = job.end_s;
   d["wall_s"] = wall;
-  if (job.status == "running") {
+  if (job.status == JobStatus::running) {
     d["eta_s"] = eta;
   } else {
     d["eta_s"] = nullptr;
@@ -91,7 +91,7 @@ nlohmann::json status_document(const JobRecord& job, const std::optional<Progres
   nlohmann::json links = nlohmann::json::array();
   links.push_back(link(self, "self", "application/json", "this job's status"));
   links.push_back(link(self + "/events", "monitor", "text/event-stream", "progress events"));
-  if (job.status == "successful" || job.status == "failed") {
+  if (job.status == JobStatus::successful || job.status == JobStatus::failed) {
     links.push_back(link(self + "/results", "http://www.opengis.net/def/rel/ogc/1.0/results",
                          "application/json", "results"));
   }

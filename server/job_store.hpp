@@ -25,14 +25,29 @@
 #include <string_view>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 namespace gearsph::server {
 
+enum class JobStatus { accepted, running, successful, failed, dismissed };
+inline constexpr JobStatus kJobStatuses[] = {JobStatus::accepted, JobStatus::running,
+                                             JobStatus::successful, JobStatus::failed,
+                                             JobStatus::dismissed};
+// As in documents and the database: "accepted", "running", ...
+std::string_view to_string(JobStatus s);
+std::optional<JobStatus> parse_job_status(std::string_view s);
 bool is_job_status(std::string_view s);
-bool is_terminal_status(std::string_view s);  // successful, failed, dismissed
+bool is_terminal_status(JobStatus s);  // successful, failed, dismissed
+// In JSON documents a status is its name, never its number.
+NLOHMANN_JSON_SERIALIZE_ENUM(JobStatus, {{JobStatus::accepted, "accepted"},
+                                         {JobStatus::running, "running"},
+                                         {JobStatus::successful, "successful"},
+                                         {JobStatus::failed, "failed"},
+                                         {JobStatus::dismissed, "dismissed"}})
 
 struct JobRecord {
   std::string id;
-  std::string status;  // accepted | running | successful | failed | dismissed
+  JobStatus status = JobStatus::accepted;
   std::string name;
   std::string job_json;  // the job with every default filled in: what runs
   std::string study_id;  // "" unless created by a study
@@ -84,8 +99,8 @@ struct SubmitResult {
 };
 
 struct JobQuery {
-  std::vector<std::string> statuses;  // empty: any
-  std::string study_id;               // non-empty: that study's jobs, in study order
+  std::vector<JobStatus> statuses;  // empty: any
+  std::string study_id;             // non-empty: that study's jobs, in study order
   std::int64_t limit = 50;
   std::int64_t offset = 0;  // newest first, unless study_id is given
 };
@@ -128,6 +143,7 @@ class JobStore {
   virtual std::optional<JobRecord> job(const std::string& id) = 0;
   virtual JobPage jobs(const JobQuery& query) = 0;
   virtual std::optional<StudyRecord> study(const std::string& id) = 0;
+  // Jobs by status name, every status present.
   virtual std::map<std::string, std::int64_t> count_by_status() = 0;
 
   // Oldest accepted job (not handed to a scheduler) -> running, attempts + 1,
@@ -148,9 +164,9 @@ class JobStore {
   virtual std::vector<std::string> save_progress(const std::vector<ProgressUpdate>& batch) = 0;
   // running -> successful | failed; false if the job was not running (or,
   // with a non-empty `worker`, is no longer held by that worker).
-  virtual bool finish(const std::string& id, const std::string& status, const std::string& message,
+  virtual bool finish(const std::string& id, JobStatus status, const std::string& message,
                       const ProgressUpdate& last, const std::string& worker) = 0;
-  bool finish(const std::string& id, const std::string& status, const std::string& message,
+  bool finish(const std::string& id, JobStatus status, const std::string& message,
               const ProgressUpdate& last) {
     return finish(id, status, message, last, "");
   }
@@ -178,8 +194,8 @@ class JobStore {
   virtual std::vector<JobRecord> dispatched() = 0;
   // Replaces the reference and the message of a dispatched job, if it still
   // has status `status`.
-  virtual bool set_dispatch(const std::string& id, const std::string& status,
-                            const std::string& ref, const std::string& message) = 0;
+  virtual bool set_dispatch(const std::string& id, JobStatus status, const std::string& ref,
+                            const std::string& message) = 0;
   // Handing over failed: the job is queued again, without a reference.
   virtual bool release_dispatch(const std::string& id, const std::string& message) = 0;
   // The scheduler started it: accepted -> running, attempts + 1.
@@ -195,6 +211,12 @@ class JobStore {
   virtual std::vector<JobRecord> active_or_changed_within(double seconds) = 0;
 };
 
+namespace sql {
+class Database;
+}
+// The store over an SQL engine (job_store_sql.cpp): its schema created or
+// migrated, then the one life cycle above in that engine's dialect.
+std::unique_ptr<JobStore> open_sql_job_store(std::unique_ptr<sql::Database> db);
 // SQLite in WAL mode at `file` (created with its schema, migrated if older).
 std::unique_ptr<JobStore> open_sqlite_job_store(const std::filesystem::path& file);
 // PostgreSQL at a libpq connection URI (postgresql://user@host:port/db...),

@@ -123,25 +123,6 @@ Result Connection::exec(const std::string& sql, const std::vector<Param>& params
   throw error;
 }
 
-Transaction::Transaction(Connection& db) : db_(db) {
-  db_.exec("BEGIN");
-}
-
-Transaction::~Transaction() {
-  if (!done_ && db_.ok()) {
-    try {
-      db_.exec("ROLLBACK");
-    } catch (const Error&) {
-      // The connection is gone; the server rolled back already.
-    }
-  }
-}
-
-void Transaction::commit() {
-  db_.exec("COMMIT");
-  done_ = true;
-}
-
 Pool::Lease::~Lease() {
   if (c_ && c_->ok()) {
     std::lock_guard<std::mutex> lock(pool_->mutex_);

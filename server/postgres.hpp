@@ -67,20 +67,6 @@ class Connection {
   pg_conn* c_ = nullptr;
 };
 
-// BEGIN ... COMMIT; rolls back unless committed.
-class Transaction {
- public:
-  explicit Transaction(Connection& db);
-  ~Transaction();
-  Transaction(const Transaction&) = delete;
-  Transaction& operator=(const Transaction&) = delete;
-  void commit();
-
- private:
-  Connection& db_;
-  bool done_ = false;
-};
-
 class Pool {
  public:
   explicit Pool(std::string uri) : uri_(std::move(uri)) {}

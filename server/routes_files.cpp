@@ -99,7 +99,7 @@ Response file(Services& s, Request& req) {
   }
   Response res = serve_file(req, *path, content_type_for(*path));
   // Results do not change once written; a running job's files may.
-  if (auto* f = std::get_if<FileResponse>(&res); f && record->status == "successful") {
+  if (auto* f = std::get_if<FileResponse>(&res); f && record->status == JobStatus::successful) {
     f->set(http::field::cache_control, "private, max-age=3600");
   }
   return res;
@@ -162,13 +162,13 @@ Response image(Services& s, Request& req) {
     p.instance = req.path;
     return problem::make(p);
   }
-  if (record->status != "successful") {
+  if (record->status != JobStatus::successful) {
     problem::Problem p;
     p.status = http::status::not_found;
     p.type = problem::kResultNotReady;
     p.title = "Result not ready";
-    p.detail =
-        "images are rendered from the results of a successful job; this one is " + record->status;
+    p.detail = "images are rendered from the results of a successful job; this one is " +
+               std::string(to_string(record->status));
     p.instance = req.path;
     return problem::make(p);
   }

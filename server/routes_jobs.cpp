@@ -112,12 +112,13 @@ Response list_jobs(Services& s, Request& req) {
       const auto comma = v.find(',', start);
       const std::string one = v.substr(start, comma == std::string::npos ? comma : comma - start);
       if (!one.empty()) {
-        if (!is_job_status(one)) {
+        const auto status = parse_job_status(one);
+        if (!status) {
           return bad_parameter(req, "status '" + one +
                                         "' is not one of accepted, running, successful, failed, "
                                         "dismissed");
         }
-        q.statuses.push_back(one);
+        q.statuses.push_back(*status);
       }
       if (comma == std::string::npos) break;
       start = comma + 1;
@@ -143,7 +144,7 @@ Response list_jobs(Services& s, Request& req) {
     filter = "status=";
     for (std::size_t i = 0; i < q.statuses.size(); ++i) {
       if (i) filter += ',';
-      filter += q.statuses[i];
+      filter += to_string(q.statuses[i]);
     }
     filter += "&";
   }
@@ -178,14 +179,14 @@ Response dismiss_job(Services& s, Request& req) {
   const std::string& id = req.param("id");
   const auto before = s.store.dismiss(id);
   if (!before) return no_such_job(req);
-  if (before->status == "running") s.workers.cancel(id);
-  if (before->status == "successful" || before->status == "failed") {
+  if (before->status == JobStatus::running) s.workers.cancel(id);
+  if (before->status == JobStatus::successful || before->status == JobStatus::failed) {
     std::error_code ec;
     std::filesystem::remove_all(s.job_dir(id), ec);
   }
   const auto record = s.store.job(id);
   if (!record) return no_such_job(req);
-  if (before->status != "dismissed") s.publish_status(*record);
+  if (before->status != JobStatus::dismissed) s.publish_status(*record);
   return json_response(http::status::ok, s.status_of(*record));
 }
 
@@ -197,7 +198,7 @@ Response results(Services& s, Request& req) {
   const auto dir = s.job_dir(id);
   const auto summary = read_json_file(dir / "summary.json");
 
-  if (record->status == "failed") {
+  if (record->status == JobStatus::failed) {
     problem::Problem p;
     p.status = http::status::internal_server_error;
     p.type = problem::kJobFailed;
@@ -208,17 +209,17 @@ Response results(Services& s, Request& req) {
     if (summary) p.extra["summary"] = *summary;
     return problem::make(p);
   }
-  if (record->status != "successful" || !summary) {
+  if (record->status != JobStatus::successful || !summary) {
     problem::Problem p;
     p.status = http::status::not_found;
     p.type = problem::kResultNotReady;
     p.title = "Result not ready";
-    p.detail = record->status == "dismissed" ? "the job was dismissed; it has no results"
-               : record->status == "running"
+    p.detail = record->status == JobStatus::dismissed ? "the job was dismissed; it has no results"
+               : record->status == JobStatus::running
                    ? "the job is running (" +
                          std::to_string(s.status_of(*record)["progress"].get<int>()) + " %)"
-               : record->status == "accepted" ? "the job is queued"
-                                              : "the job's results are missing";
+               : record->status == JobStatus::accepted ? "the job is queued"
+                                                       : "the job's results are missing";
     p.instance = req.path;
     p.extra["jobID"] = id;
     p.extra["status"] = record->status;

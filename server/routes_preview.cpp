@@ -37,7 +37,7 @@ double rounded(double v, double quantum) {
 // Particle-steps per second of this server's recent successful jobs.
 nlohmann::json speed_estimate(Services& s, double particle_steps) {
   JobQuery q;
-  q.statuses = {"successful"};
+  q.statuses = {JobStatus::successful};
   q.limit = kSpeedSampleJobs;
   double work = 0, wall = 0;
   int used = 0;

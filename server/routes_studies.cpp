@@ -60,7 +60,7 @@ StudyView view_study(Services& s, const StudyRecord& study) {
   double progress = 0.0;
   for (const JobRecord& j : page.jobs) {
     const nlohmann::json st = s.status_of(j);
-    ++counts[j.status];
+    ++counts[std::string(to_string(j.status))];
     progress += st["progress"].get<double>();
     jobs.push_back({{"jobID", j.id},
                     {"status", j.status},

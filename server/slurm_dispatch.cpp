@@ -360,12 +360,12 @@ bool SlurmDispatcher::submit(const JobRecord& job) {
     store_.release_dispatch(job.id, "queued; sbatch failed (" + why + "), trying again");
     return false;
   }
-  if (!store_.set_dispatch(job.id, "accepted", kRefPrefix + *slurm_id,
+  if (!store_.set_dispatch(job.id, JobStatus::accepted, kRefPrefix + *slurm_id,
                            "queued in Slurm as job " + *slurm_id)) {
     // Dismissed while sbatch ran: keep the Slurm job's id so that the next
     // pass cancels it instead of leaving it to run unseen.
     store_.set_dispatch(
-        job.id, "dismissed", kRefPrefix + *slurm_id,
+        job.id, JobStatus::dismissed, kRefPrefix + *slurm_id,
         "dismissed while it was being submitted to Slurm (job " + *slurm_id + "); cancelling it");
   }
   std::fprintf(stderr, "gearsph serve: job %s submitted to Slurm as job %s\n", job.id.c_str(),
@@ -396,7 +396,7 @@ void SlurmDispatcher::track() {
       if (it != by_name.end()) {
         store_.set_dispatch(job.id, job.status, kRefPrefix + it->second.job_id,
                             "queued in Slurm as job " + it->second.job_id);
-      } else if (job.status == "accepted") {
+      } else if (job.status == JobStatus::accepted) {
         store_.release_dispatch(job.id, "queued (its submission to Slurm was interrupted)");
       } else {
         store_.forget_dispatch(job.id);
@@ -409,7 +409,7 @@ void SlurmDispatcher::track() {
     const SlurmPhase phase = it == by_id.end() ? SlurmPhase::ended : slurm_phase(it->second.state);
     const std::string state = it == by_id.end() ? "" : it->second.state;
 
-    if (job.status == "dismissed") {
+    if (job.status == JobStatus::dismissed) {
       if (phase != SlurmPhase::ended) {
         const CommandResult c = run_command({"scancel", slurm_id});
         if (c.status != 0) {
@@ -438,13 +438,13 @@ void SlurmDispatcher::track() {
                                   (it->second.reason.empty() || it->second.reason == "None"
                                        ? std::string()
                                        : " (" + it->second.reason + ")");
-      if (job.status == "accepted" && job.message != message) {
-        store_.set_dispatch(job.id, "accepted", ref, message);
+      if (job.status == JobStatus::accepted && job.message != message) {
+        store_.set_dispatch(job.id, JobStatus::accepted, ref, message);
       }
       continue;
     }
     if (phase == SlurmPhase::running || phase == SlurmPhase::unknown) {
-      if (job.status == "accepted") {
+      if (job.status == JobStatus::accepted) {
         store_.start_dispatched(job.id, ref, "running in Slurm as job " + slurm_id);
       }
       const auto p = parse_run_progress(tail_of(dir_of(job.id) / ".slurm" / "output.txt", 4096));
@@ -492,7 +492,7 @@ void SlurmDispatcher::conclude(const JobRecord& job, const std::string& slurm_id
   last.simulated_s = job.simulated_s;
   last.wall_s = job.wall_s;
   last.progress = job.progress;
-  std::string outcome = "failed";
+  JobStatus outcome = JobStatus::failed;
   std::string message;
   const std::string where = " (Slurm job " + slurm_id + ")";
   const auto summary = nlohmann::json::parse(read_text(dir / "summary.json"), nullptr, false);
@@ -502,7 +502,7 @@ void SlurmDispatcher::conclude(const JobRecord& job, const std::string& slurm_id
     last.simulated_s = summary.value("simulated_s", last.simulated_s);
   }
   if (exit_code && *exit_code == 0) {
-    outcome = "successful";
+    outcome = JobStatus::successful;
     last.progress = 100;
     message = "completed " + std::to_string(last.step) + " steps in " + fixed(last.wall_s, 2) +
               " s" + where;
@@ -517,10 +517,10 @@ void SlurmDispatcher::conclude(const JobRecord& job, const std::string& slurm_id
   } else {
     message = "the Slurm job " + slurm_id + " ended without leaving an exit status";
   }
-  if (job.status == "accepted") store_.start_dispatched(job.id, job.dispatch_ref, message);
+  if (job.status == JobStatus::accepted) store_.start_dispatched(job.id, job.dispatch_ref, message);
   if (store_.finish(job.id, outcome, message, last)) {
-    std::fprintf(stderr, "gearsph serve: job %s %s: %s\n", job.id.c_str(), outcome.c_str(),
-                 message.c_str());
+    std::fprintf(stderr, "gearsph serve: job %s %s: %s\n", job.id.c_str(),
+                 std::string(to_string(outcome)).c_str(), message.c_str());
   }
   store_.forget_dispatch(job.id);
 }

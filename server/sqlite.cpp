@@ -58,6 +58,14 @@ void Statement::run() {
   }
 }
 
+int Statement::columns() const {
+  return sqlite3_column_count(stmt_);
+}
+
+int Statement::type(int column) const {
+  return sqlite3_column_type(stmt_, column);
+}
+
 std::int64_t Statement::int64(int column) const {
   return sqlite3_column_int64(stmt_, column);
 }
@@ -110,25 +118,6 @@ void Connection::exec(const std::string& sql) {
 
 std::int64_t Connection::changes() const {
   return sqlite3_changes64(db_);
-}
-
-Transaction::Transaction(Connection& db) : db_(db) {
-  db_.exec("BEGIN IMMEDIATE");
-}
-
-Transaction::~Transaction() {
-  if (!done_) {
-    try {
-      db_.exec("ROLLBACK");
-    } catch (const Error&) {
-      // Nothing to roll back (SQLite already did on a failed statement).
-    }
-  }
-}
-
-void Transaction::commit() {
-  db_.exec("COMMIT");
-  done_ = true;
 }
 
 Pool::Lease::~Lease() {

@@ -42,6 +42,9 @@ class Statement {
   void run();
 
   // Columns are numbered from 0.
+  int columns() const;
+  // SQLITE_INTEGER, SQLITE_FLOAT, SQLITE_TEXT, SQLITE_BLOB or SQLITE_NULL.
+  int type(int column) const;
   std::int64_t int64(int column) const;
   double real(int column) const;
   std::string text(int column) const;  // "" for NULL
@@ -68,21 +71,6 @@ class Connection {
 
  private:
   sqlite3* db_ = nullptr;
-};
-
-// BEGIN IMMEDIATE takes the write lock up front, so two writers never
-// deadlock upgrading read locks; rolls back unless committed.
-class Transaction {
- public:
-  explicit Transaction(Connection& db);
-  ~Transaction();
-  Transaction(const Transaction&) = delete;
-  Transaction& operator=(const Transaction&) = delete;
-  void commit();
-
- private:
-  Connection& db_;
-  bool done_ = false;
 };
 
 // Connections are opened on demand and reused; one thread holds a

@@ -79,7 +79,7 @@ void StoreWatcher::poll(double window_s) {
     if (!primed_ || local_.live(job.id)) continue;
     if (!before || before->status != now.status || before->message != now.message) {
       hub_.publish(job.id, "status", status_document(job).dump(), is_terminal_status(job.status));
-    } else if (job.status == "running" && before->step != now.step) {
+    } else if (job.status == JobStatus::running && before->step != now.step) {
       nlohmann::json p = status_document(job);
       nlohmann::json d = {
           {"jobID", job.id},    {"status", "running"},  {"progress", p["progress"]},

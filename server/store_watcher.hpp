@@ -39,7 +39,8 @@ class StoreWatcher {
 
  private:
   struct Seen {
-    std::string status, message;
+    JobStatus status = JobStatus::accepted;
+    std::string message;
     std::int64_t step = 0;
   };
   void loop();

@@ -187,7 +187,8 @@ void WorkerPool::run(const JobRecord& job) {
   publish_status(job.id);
 
   const std::filesystem::path dir = options_.jobs_dir / job.id;
-  std::string outcome = "failed";
+  JobStatus outcome = JobStatus::failed;
+  bool cancelled = false;
   std::string message;
   ProgressUpdate last;
   last.id = job.id;
@@ -212,12 +213,12 @@ void WorkerPool::run(const JobRecord& job) {
     last.wall_s = r.wall_s;
     last.progress = percent(r.steps_done, prepared.steps);
     if (r.status == "completed") {
-      outcome = "successful";
+      outcome = JobStatus::successful;
       last.progress = 100;
       message =
           "completed " + std::to_string(r.steps_done) + " steps in " + fixed(r.wall_s, 2) + " s";
     } else if (r.status == "cancelled") {
-      outcome = "cancelled";
+      cancelled = true;
     } else {
       message = "the run diverged: " + r.message;
     }
@@ -230,12 +231,12 @@ void WorkerPool::run(const JobRecord& job) {
   const std::string where = "step " + std::to_string(last.step) + " of " + std::to_string(steps);
   const std::string& worker = options_.holder.worker;
   auto record_outcome = [&] {
-    if (outcome == "cancelled" && !rj->dismissed && !rj->lost && stopping_) {
+    if (cancelled && !rj->dismissed && !rj->lost && stopping_) {
       store_.requeue(job.id,
                      "re-queued: the server was stopped while this job ran (at " + where +
                          "); it starts again from the beginning when the server is back",
                      worker);
-    } else if (outcome == "cancelled") {
+    } else if (cancelled) {
       if (!store_.close_dismissed(job.id, "dismissed while running; the run stopped at " + where,
                                   last) &&
           rj->lost) {
@@ -244,10 +245,11 @@ void WorkerPool::run(const JobRecord& job) {
       }
     } else if (!store_.finish(job.id, outcome, message, last, worker)) {
       // Dismissed while its last steps ran.
-      store_.close_dismissed(job.id,
-                             "dismissed while running; the run had just " +
-                                 std::string(outcome == "successful" ? "completed" : "failed"),
-                             last);
+      store_.close_dismissed(
+          job.id,
+          "dismissed while running; the run had just " +
+              std::string(outcome == JobStatus::successful ? "completed" : "failed"),
+          last);
     }
   };
   // A shared store may be restarting: keep trying for as long as the lease
@@ -267,7 +269,8 @@ void WorkerPool::run(const JobRecord& job) {
   }
   const auto record = store_.job(job.id);
   std::fprintf(stderr, "%s: job %s %s: %s\n", options_.log_name.c_str(), job.id.c_str(),
-               record ? record->status.c_str() : "?", record ? record->message.c_str() : "");
+               record ? std::string(to_string(record->status)).c_str() : "?",
+               record ? record->message.c_str() : "");
   publish_status(job.id);
 }
 

@@ -125,10 +125,10 @@ void expect_leases_work(JobStore& store) {
   EXPECT_EQ(again->worker, "b");
   // The first holder is fenced off: it can neither renew nor finish.
   EXPECT_EQ(store.renew(a, {j.id}), std::vector<std::string>{j.id});
-  EXPECT_FALSE(store.finish(j.id, "successful", "done", {j.id, 1, 1, 1, 0, 100}, "a"));
+  EXPECT_FALSE(store.finish(j.id, JobStatus::successful, "done", {j.id, 1, 1, 1, 0, 100}, "a"));
   EXPECT_FALSE(store.requeue(j.id, "stopping", "a"));
-  EXPECT_TRUE(store.finish(j.id, "successful", "done", {j.id, 1, 1, 1, 0, 100}, "b"));
-  EXPECT_EQ(store.job(j.id)->status, "successful");
+  EXPECT_TRUE(store.finish(j.id, JobStatus::successful, "done", {j.id, 1, 1, 1, 0, 100}, "b"));
+  EXPECT_EQ(store.job(j.id)->status, JobStatus::successful);
   // Dismissed while running: the holder learns it at its next heartbeat.
   NewJob k = j;
   k.id = new_id();
@@ -143,7 +143,7 @@ void expect_leases_work(JobStore& store) {
   ASSERT_TRUE(store.claim(a));
   expire();
   EXPECT_EQ(store.reclaim_expired(1).failed, std::vector<std::string>{m.id});
-  EXPECT_EQ(store.job(m.id)->status, "failed");
+  EXPECT_EQ(store.job(m.id)->status, JobStatus::failed);
   // The single server's own claims carry no lease: never reclaimed, and
   // recovered at its start-up instead.
   NewJob n = j;

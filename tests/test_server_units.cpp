@@ -99,7 +99,7 @@ TEST(ServerJobStore, OldestFirstAndTheLifeCycle) {
   auto first = store->claim();
   ASSERT_TRUE(first);
   EXPECT_EQ(first->id, a.id);
-  EXPECT_EQ(first->status, "running");
+  EXPECT_EQ(first->status, JobStatus::running);
   EXPECT_EQ(first->attempts, 1);
   EXPECT_FALSE(first->started.empty());
 
@@ -109,20 +109,21 @@ TEST(ServerJobStore, OldestFirstAndTheLifeCycle) {
   // A dismissed job is reported back by the next progress batch.
   store->dismiss(a.id);
   EXPECT_EQ(store->save_progress({p}), std::vector<std::string>{a.id});
-  EXPECT_FALSE(store->finish(a.id, "successful", "done", p));
+  EXPECT_FALSE(store->finish(a.id, JobStatus::successful, "done", p));
   EXPECT_TRUE(store->close_dismissed(a.id, "stopped at step 50", p));
-  EXPECT_EQ(store->job(a.id)->status, "dismissed");
+  EXPECT_EQ(store->job(a.id)->status, JobStatus::dismissed);
 
   auto second = store->claim();
   ASSERT_TRUE(second);
-  EXPECT_TRUE(store->finish(second->id, "successful", "done", {second->id, 100, 1, 1, 0, 100}));
+  EXPECT_TRUE(
+      store->finish(second->id, JobStatus::successful, "done", {second->id, 100, 1, 1, 0, 100}));
   EXPECT_FALSE(store->claim());
   const auto rec = store->job(b.id);
-  EXPECT_EQ(rec->status, "successful");
+  EXPECT_EQ(rec->status, JobStatus::successful);
   EXPECT_EQ(rec->progress, 100);
   EXPECT_FALSE(rec->finished.empty());
   const auto before = store->dismiss(b.id);
-  EXPECT_EQ(before->status, "successful");
+  EXPECT_EQ(before->status, JobStatus::successful);
   EXPECT_NE(store->job(b.id)->message.find("files were deleted"), std::string::npos);
   EXPECT_FALSE(store->dismiss(new_id()));
 }
@@ -142,7 +143,7 @@ TEST(ServerJobStore, RecoverRequeuesThenFailsAfterMaxAttempts) {
     EXPECT_EQ(r.requeued, std::vector<std::string>{j.id});
     EXPECT_TRUE(r.failed.empty());
     const auto rec = store->job(j.id);
-    EXPECT_EQ(rec->status, "accepted");
+    EXPECT_EQ(rec->status, JobStatus::accepted);
     EXPECT_NE(rec->message.find("re-queued"), std::string::npos);
     EXPECT_EQ(store->claim()->attempts, 2);
   }
@@ -150,7 +151,7 @@ TEST(ServerJobStore, RecoverRequeuesThenFailsAfterMaxAttempts) {
     auto store = open_sqlite_job_store(file);
     const Recovery r = store->recover(2);
     EXPECT_EQ(r.failed, std::vector<std::string>{j.id});
-    EXPECT_EQ(store->job(j.id)->status, "failed");
+    EXPECT_EQ(store->job(j.id)->status, JobStatus::failed);
     EXPECT_NE(store->job(j.id)->message.find("interrupted 2 times"), std::string::npos);
   }
   Database db(file);
@@ -167,7 +168,7 @@ TEST(ServerJobStore, GracefulRequeueDoesNotCountTheAttempt) {
   store->claim();
   EXPECT_TRUE(store->requeue(j.id, "re-queued: stopping"));
   EXPECT_EQ(store->job(j.id)->attempts, 0);
-  EXPECT_EQ(store->job(j.id)->status, "accepted");
+  EXPECT_EQ(store->job(j.id)->status, JobStatus::accepted);
   EXPECT_FALSE(store->requeue(j.id, "again"));  // only a running job
 }
 
@@ -206,7 +207,7 @@ TEST(ServerJobStore, PagesAndFilters) {
   q.offset = 6;
   EXPECT_EQ(store->jobs(q).jobs.size(), 1u);
   q = {};
-  q.statuses = {"running"};
+  q.statuses = {JobStatus::running};
   p = store->jobs(q);
   EXPECT_EQ(p.total, 1);
   EXPECT_EQ(p.jobs.at(0).id, ids[0]);

@@ -1,23 +1,24 @@
 #pragma once
-// A JSON Schema (draft-07 subset) validator over nlohmann::json, written for
-// job files: its error messages are shown to users, so each one is a single
-// plain sentence tied to the JSON pointer of the offending value.
+// JSON Schema (draft-07) checks for job files. Whether a value is valid is
+// decided by valijson; this layer says why in words a user understands: each
+// error is one plain sentence tied to the JSON pointer of the offending
+// value, with "did you mean" for near misses of field names and enum values.
+// It also fills in defaults, which valijson does not do.
 //
-// Supported keywords: type, enum, const, properties, required,
-// additionalProperties, patternProperties, propertyNames, minProperties,
-// maxProperties, items (single and tuple form), additionalItems, minItems,
-// maxItems, uniqueItems, contains, minimum, maximum, exclusiveMinimum,
-// exclusiveMaximum (numeric form), multipleOf, minLength, maxLength (in code
-// points), pattern (std::regex ECMAScript, search semantics), allOf, anyOf,
-// oneOf, not, if/then/else, $ref (local "#..." pointers only), definitions and
-// boolean schemas. format, annotations and unknown keywords are ignored.
-// As in draft-07, keywords next to a "$ref" are ignored when validating
-// ("default" next to a "$ref" is still used by apply_defaults).
-//
-// Limits, so no instance can crash the caller: instances nested more than
-// 200 levels deep get an "is nested too deeply" error, and strings longer than
-// 1000 bytes are not matched against a pattern (std::regex recurses per
-// character) but reported as too long to check.
+// Beyond valijson:
+// - Numbers with a zero fraction are integers, in schemas and instances
+//   alike (draft-07: 3.0 is an integer, "minItems": 2.0 is a count).
+// - Instances nested more than 200 levels deep get an "is nested too deeply"
+//   error and are not checked further (valijson recurses per level).
+// - When the schema matches strings against regular expressions ("pattern",
+//   "patternProperties", "format"), strings and field names longer than
+//   1000 bytes are reported as too long to check (std::regex recurses per
+//   character).
+// - A schema is refused at construction when a local "$ref" does not
+//   resolve, when it refers to itself without descending into the value
+//   (a loop of "$ref"s or of allOf/anyOf/oneOf/not/if), when a regular
+//   expression does not compile, or when valijson refuses it. References to
+//   other documents are not fetched.
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -36,8 +37,7 @@ struct Error {
 
 class Validator {
  public:
-  // Throws std::invalid_argument on a malformed schema, an invalid pattern,
-  // or a $ref that cannot be resolved inside this schema.
+  // Throws std::invalid_argument on a schema that cannot be used (above).
   explicit Validator(nlohmann::json schema);
 
   // Errors sorted by pointer (plain string order, stable), without
@@ -45,15 +45,19 @@ class Validator {
   std::vector<Error> validate(const nlohmann::json& instance, std::size_t max_errors = 50) const;
 
   // A copy of `instance` where absent properties whose schema has a
-  // "default" are filled in, recursively. Present values are never changed,
-  // and parts of the instance that do not fit the schema are left alone.
+  // "default" are filled in, recursively ("default" next to a "$ref" wins
+  // over the target's). Present values are never changed, and parts of the
+  // instance that do not fit the schema are left alone. Branches of anyOf,
+  // oneOf and if/then/else are chosen on the value as filled so far, so a
+  // defaulted discriminator selects its branch.
   nlohmann::json apply_defaults(const nlohmann::json& instance) const;
 
   const nlohmann::json& schema() const;
 
  private:
-  struct Compiled;  // the schema compiled into a graph of nodes
-  // Shared and immutable, so copies of a Validator are cheap and thread-safe.
+  struct Compiled;
+  // Shared and immutable but for a locked cache, so copies of a Validator
+  // are cheap and thread-safe.
   std::shared_ptr<const Compiled> compiled_;
 };
 

@@ -1,0 +1,497 @@
+// The job store's life cycle (job_store.hpp) once, in SQL that SQLite and
+// PostgreSQL both speak; what differs between them (clocks, row locks,
+// migrations) comes from the engine's sql::Dialect. Every state change is
+// one statement or one transaction, and each statement names the status it
+// moves a job from, so two processes never both move the same job.
+#include <algorithm>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+#include "server/job_store.hpp"
+#include "server/sql.hpp"
+
+namespace gearsph::server {
+
+std::string_view to_string(JobStatus s) {
+  switch (s) {
+    case JobStatus::accepted:
+      return "accepted";
+    case JobStatus::running:
+      return "running";
+    case JobStatus::successful:
+      return "successful";
+    case JobStatus::failed:
+      return "failed";
+    case JobStatus::dismissed:
+      return "dismissed";
+  }
+  return "accepted";
+}
+
+std::optional<JobStatus> parse_job_status(std::string_view s) {
+  for (JobStatus status : kJobStatuses) {
+    if (to_string(status) == s) return status;
+  }
+  return std::nullopt;
+}
+
+bool is_job_status(std::string_view s) {
+  return parse_job_status(s).has_value();
+}
+
+bool is_terminal_status(JobStatus s) {
+  return s == JobStatus::successful || s == JobStatus::failed || s == JobStatus::dismissed;
+}
+
+namespace {
+
+sql::Value text(JobStatus s) {
+  return std::string(to_string(s));
+}
+
+const char* const kJobColumns =
+    "id, status, name, job_json, study_id, study_index, parameters_json, particles, steps, "
+    "end_s, step, simulated_s, wall_s, eta_s, progress, attempts, message, created, started, "
+    "finished, updated, worker, dispatch_ref";
+const std::string kSelectJob = std::string("SELECT ") + kJobColumns + " FROM jobs";
+
+JobRecord read_job(const sql::Row& r) {
+  JobRecord j;
+  j.id = r.text(0);
+  const auto status = parse_job_status(r.text(1));
+  if (!status) throw std::runtime_error("job " + j.id + " has an unknown status " + r.text(1));
+  j.status = *status;
+  j.name = r.text(2);
+  j.job_json = r.text(3);
+  j.study_id = r.text(4);
+  j.study_index = r.int64(5);
+  j.parameters_json = r.text(6);
+  j.particles = r.int64(7);
+  j.steps = r.int64(8);
+  j.end_s = r.real(9);
+  j.step = r.int64(10);
+  j.simulated_s = r.real(11);
+  j.wall_s = r.real(12);
+  j.eta_s = r.real(13);
+  j.progress = static_cast<int>(r.int64(14));
+  j.attempts = static_cast<int>(r.int64(15));
+  j.message = r.text(16);
+  j.created = r.text(17);
+  j.started = r.text(18);
+  j.finished = r.text(19);
+  j.updated = r.text(20);
+  j.worker = r.text(21);
+  j.dispatch_ref = r.text(22);
+  return j;
+}
+
+std::vector<JobRecord> read_jobs(const sql::Rows& rows) {
+  std::vector<JobRecord> out;
+  for (const sql::Row& r : rows) out.push_back(read_job(r));
+  return out;
+}
+
+std::vector<std::string> ids_of(const sql::Rows& rows) {
+  std::vector<std::string> out;
+  for (const sql::Row& r : rows) out.push_back(r.text(0));
+  return out;
+}
+
+// "?, ?, ?" for n parameters.
+std::string placeholders(std::size_t n) {
+  std::string s;
+  for (std::size_t i = 0; i < n; ++i) s += i ? ", ?" : "?";
+  return s;
+}
+
+// " AND worker = ?" when a worker is named: only it may move its job.
+std::string held_by(const std::string& worker, sql::Values& params) {
+  if (worker.empty()) return "";
+  params.push_back(worker);
+  return " AND worker = ?";
+}
+
+// Progress columns back to the start, for a run that starts (again).
+const char* const kFromTheStart = "step = 0, simulated_s = 0, wall_s = 0, eta_s = 0, progress = 0";
+
+// "1 attempt", "2 attempts", said by SQL.
+const char* const kAttemptsWord =
+    "attempts || CASE WHEN attempts = 1 THEN ' attempt' ELSE ' attempts' END";
+
+class SqlJobStore : public JobStore {
+ public:
+  explicit SqlJobStore(std::unique_ptr<sql::Database> db)
+      : db_(std::move(db)), d_(db_->dialect()), now_(d_.now) {
+    migrate();
+  }
+
+  SubmitResult submit(const NewJob& job, const std::optional<Idempotency>& idem) override {
+    auto db = db_->connect();
+    sql::Transaction tx(*db);
+    if (auto seen = claim_key(*db, idem, job.id)) return *seen;
+    insert_job(*db, job);
+    tx.commit();
+    return {SubmitResult::Kind::created, job.id};
+  }
+
+  SubmitResult submit_study(const NewStudy& study, const std::vector<NewJob>& jobs,
+                            const std::optional<Idempotency>& idem) override {
+    auto db = db_->connect();
+    sql::Transaction tx(*db);
+    if (auto seen = claim_key(*db, idem, study.id)) return *seen;
+    db->execute("INSERT INTO studies (id, name, spec_json, created) VALUES (?, ?, ?, " + now_ + ")",
+                {study.id, study.name, study.spec_json});
+    for (const NewJob& j : jobs) insert_job(*db, j);
+    tx.commit();
+    return {SubmitResult::Kind::created, study.id};
+  }
+
+  std::optional<JobRecord> job(const std::string& id) override {
+    const auto rows = db_->connect()->query(kSelectJob + " WHERE id = ?", {id});
+    if (rows.empty()) return std::nullopt;
+    return read_job(rows.front());
+  }
+
+  JobPage jobs(const JobQuery& q) override {
+    std::string where = " WHERE 1 = 1";
+    sql::Values params;
+    if (!q.statuses.empty()) {
+      where += " AND status IN (" + placeholders(q.statuses.size()) + ")";
+      for (JobStatus s : q.statuses) params.push_back(text(s));
+    }
+    if (!q.study_id.empty()) {
+      where += " AND study_id = ?";
+      params.push_back(q.study_id);
+    }
+    auto db = db_->connect();
+    JobPage page;
+    page.total = db->query("SELECT COUNT(*) FROM jobs" + where, params).front().int64(0);
+    params.push_back(q.limit);
+    params.push_back(q.offset);
+    const std::string order = q.study_id.empty() ? " ORDER BY seq DESC" : " ORDER BY study_index";
+    page.jobs = read_jobs(db->query(kSelectJob + where + order + " LIMIT ? OFFSET ?", params));
+    return page;
+  }
+
+  std::optional<StudyRecord> study(const std::string& id) override {
+    const auto rows = db_->connect()->query(
+        "SELECT id, name, spec_json, created FROM studies WHERE id = ?", {id});
+    if (rows.empty()) return std::nullopt;
+    const sql::Row& r = rows.front();
+    return StudyRecord{r.text(0), r.text(1), r.text(2), r.text(3)};
+  }
+
+  std::map<std::string, std::int64_t> count_by_status() override {
+    std::map<std::string, std::int64_t> counts;
+    for (JobStatus s : kJobStatuses) counts[std::string(to_string(s))] = 0;
+    for (const sql::Row& r :
+         db_->connect()->query("SELECT status, COUNT(*) FROM jobs GROUP BY status")) {
+      counts[r.text(0)] = r.int64(1);
+    }
+    return counts;
+  }
+
+  std::optional<JobRecord> claim(const Holder& holder) override {
+    // One statement: two workers can never claim the same job.
+    const auto rows = db_->connect()->query(
+        "UPDATE jobs SET status = 'running', attempts = attempts + 1, "
+        "message = 'running' || CASE WHEN attempts > 0 THEN ' (attempt ' || (attempts + 1) || "
+        "')' ELSE '' END, started = " +
+            now_ + ", updated = " + now_ + ", finished = NULL, " + kFromTheStart +
+            ", worker = ?, lease_until = CASE WHEN " + d_.seconds_param + " > 0 THEN " +
+            d_.lease_in +
+            " ELSE NULL END WHERE seq = (SELECT seq FROM jobs WHERE status = 'accepted' AND "
+            "dispatch_ref IS NULL ORDER BY seq LIMIT 1" +
+            d_.skip_locked + ") RETURNING " + kJobColumns,
+        {holder.worker, holder.lease_s, holder.lease_s});
+    if (rows.empty()) return std::nullopt;
+    return read_job(rows.front());
+  }
+
+  std::vector<std::string> renew(const Holder& holder,
+                                 const std::vector<std::string>& ids) override {
+    if (ids.empty()) return {};
+    sql::Values params{holder.lease_s, holder.worker};
+    params.insert(params.end(), ids.begin(), ids.end());
+    const auto held =
+        ids_of(db_->connect()->query("UPDATE jobs SET lease_until = " + d_.lease_in +
+                                         " WHERE status = 'running' AND worker = ? AND id IN (" +
+                                         placeholders(ids.size()) + ") RETURNING id",
+                                     params));
+    const std::set<std::string> kept(held.begin(), held.end());
+    std::vector<std::string> lost;
+    for (const std::string& id : ids) {
+      if (!kept.count(id)) lost.push_back(id);
+    }
+    return lost;
+  }
+
+  Recovery reclaim_expired(int max_attempts) override {
+    const std::string expired = " WHERE status = 'running' AND lease_until < " + d_.lease_clock;
+    const std::string whose =
+        "'its worker ' || worker || ' stopped renewing its lease during attempt ' || attempts";
+    Recovery out;
+    auto db = db_->connect();
+    sql::Transaction tx(*db);
+    out.failed = ids_of(db->query(
+        "UPDATE jobs SET status = 'failed', eta_s = 0, lease_until = NULL, message = " + whose +
+            " || '; not started again after ' || " + kAttemptsWord + ", finished = " + now_ +
+            ", updated = " + now_ + expired + " AND attempts >= ? RETURNING id",
+        {std::int64_t{max_attempts}}));
+    out.requeued = ids_of(db->query(
+        "UPDATE jobs SET status = 'accepted', lease_until = NULL, message = 're-queued: ' || " +
+        whose + " || '; the job starts again from the beginning', started = NULL, " +
+        kFromTheStart + ", updated = " + now_ + expired + " RETURNING id"));
+    tx.commit();
+    return out;
+  }
+
+  std::vector<std::string> save_progress(const std::vector<ProgressUpdate>& batch) override {
+    std::vector<std::string> gone;
+    if (batch.empty()) return gone;
+    auto db = db_->connect();
+    sql::Transaction tx(*db);
+    for (const ProgressUpdate& u : batch) {
+      const auto changed = db->execute(
+          "UPDATE jobs SET step = ?, simulated_s = ?, wall_s = ?, eta_s = ?, progress = ?, "
+          "updated = " +
+              now_ + " WHERE id = ? AND status = 'running'",
+          {u.step, u.simulated_s, u.wall_s, u.eta_s, std::int64_t{u.progress}, u.id});
+      if (changed == 0) gone.push_back(u.id);
+    }
+    tx.commit();
+    return gone;
+  }
+
+  bool finish(const std::string& id, JobStatus status, const std::string& message,
+              const ProgressUpdate& last, const std::string& worker) override {
+    sql::Values params{text(status),
+                       message,
+                       last.step,
+                       last.simulated_s,
+                       last.wall_s,
+                       std::int64_t{last.progress},
+                       id};
+    const std::string held = held_by(worker, params);
+    return db_->connect()->execute(
+               "UPDATE jobs SET status = ?, message = ?, step = ?, simulated_s = ?, wall_s = ?, "
+               "eta_s = 0, progress = ?, lease_until = NULL, dispatch_ref = NULL, finished = " +
+                   now_ + ", updated = " + now_ + " WHERE id = ? AND status = 'running'" + held,
+               params) > 0;
+  }
+
+  bool close_dismissed(const std::string& id, const std::string& message,
+                       const ProgressUpdate& last) override {
+    return db_->connect()->execute(
+               "UPDATE jobs SET message = ?, step = ?, simulated_s = ?, wall_s = ?, eta_s = 0, "
+               "progress = ?, lease_until = NULL, finished = " +
+                   now_ + ", updated = " + now_ + " WHERE id = ? AND status = 'dismissed'",
+               {message, last.step, last.simulated_s, last.wall_s, std::int64_t{last.progress},
+                id}) > 0;
+  }
+
+  bool requeue(const std::string& id, const std::string& message,
+               const std::string& worker) override {
+    sql::Values params{message, id};
+    const std::string held = held_by(worker, params);
+    return db_->connect()->execute(
+               "UPDATE jobs SET status = 'accepted', "
+               "attempts = CASE WHEN attempts > 0 THEN attempts - 1 ELSE 0 END, message = ?, "
+               "started = NULL, " +
+                   std::string(kFromTheStart) + ", lease_until = NULL, updated = " + now_ +
+                   " WHERE id = ? AND status = 'running'" + held,
+               params) > 0;
+  }
+
+  std::optional<JobRecord> dismiss(const std::string& id) override {
+    auto db = db_->connect();
+    sql::Transaction tx(*db);
+    const auto rows = db->query(kSelectJob + " WHERE id = ?" + d_.lock_row, {id});
+    if (rows.empty()) return std::nullopt;
+    JobRecord before = read_job(rows.front());
+    if (before.status != JobStatus::dismissed) {
+      db->execute("UPDATE jobs SET status = 'dismissed', message = ?, eta_s = 0, finished = " +
+                      now_ + ", updated = " + now_ + " WHERE id = ?",
+                  {dismissal_message(before.status), id});
+    }
+    tx.commit();
+    return before;
+  }
+
+  Recovery recover(int max_attempts) override {
+    // The server's own pool: no lease, no scheduler.
+    const std::string own =
+        " WHERE status = 'running' AND lease_until IS NULL AND dispatch_ref IS NULL";
+    Recovery out;
+    auto db = db_->connect();
+    sql::Transaction tx(*db);
+    out.failed = ids_of(db->query(
+        "UPDATE jobs SET status = 'failed', eta_s = 0, message = 'interrupted ' || attempts || "
+        "CASE WHEN attempts = 1 THEN ' time' ELSE ' times' END || ' (the server stopped while "
+        "it ran); not started again after ' || " +
+            std::string(kAttemptsWord) + ", finished = " + now_ + ", updated = " + now_ + own +
+            " AND attempts >= ? RETURNING id",
+        {std::int64_t{max_attempts}}));
+    out.requeued = ids_of(db->query(
+        "UPDATE jobs SET status = 'accepted', message = 're-queued: the server stopped while "
+        "attempt ' || attempts || ' ran; the job starts again from the beginning', "
+        "started = NULL, " +
+        std::string(kFromTheStart) + ", updated = " + now_ + own + " RETURNING id"));
+    tx.commit();
+    return out;
+  }
+
+  std::optional<JobRecord> claim_for_dispatch(const std::string& ref) override {
+    const auto rows = db_->connect()->query(
+        "UPDATE jobs SET dispatch_ref = ?, updated = " + now_ +
+            " WHERE seq = (SELECT seq FROM jobs WHERE status = 'accepted' AND dispatch_ref IS "
+            "NULL ORDER BY seq LIMIT 1" +
+            d_.skip_locked + ") RETURNING " + kJobColumns,
+        {ref});
+    if (rows.empty()) return std::nullopt;
+    return read_job(rows.front());
+  }
+
+  std::vector<JobRecord> dispatched() override {
+    return read_jobs(
+        db_->connect()->query(kSelectJob + " WHERE dispatch_ref IS NOT NULL ORDER BY seq"));
+  }
+
+  bool set_dispatch(const std::string& id, JobStatus status, const std::string& ref,
+                    const std::string& message) override {
+    return db_->connect()->execute(
+               "UPDATE jobs SET dispatch_ref = ?, message = ?, updated = " + now_ +
+                   " WHERE id = ? AND status = ? AND dispatch_ref IS NOT NULL",
+               {ref, message, id, text(status)}) > 0;
+  }
+
+  bool release_dispatch(const std::string& id, const std::string& message) override {
+    return db_->connect()->execute("UPDATE jobs SET dispatch_ref = NULL, message = ?, updated = " +
+                                       now_ + " WHERE id = ? AND status = 'accepted'",
+                                   {message, id}) > 0;
+  }
+
+  bool start_dispatched(const std::string& id, const std::string& worker,
+                        const std::string& message) override {
+    return db_->connect()->execute(
+               "UPDATE jobs SET status = 'running', attempts = attempts + 1, worker = ?, "
+               "message = ?, started = " +
+                   now_ + ", updated = " + now_ + ", finished = NULL, " + kFromTheStart +
+                   " WHERE id = ? AND status = 'accepted' AND dispatch_ref IS NOT NULL",
+               {worker, message, id}) > 0;
+  }
+
+  void forget_dispatch(const std::string& id) override {
+    db_->connect()->execute(
+        "UPDATE jobs SET dispatch_ref = NULL WHERE id = ? AND status IN "
+        "('successful', 'failed', 'dismissed')",
+        {id});
+  }
+
+  std::vector<JobRecord> active_or_changed_within(double seconds) override {
+    return read_jobs(db_->connect()->query(
+        kSelectJob + " WHERE status IN ('accepted', 'running') OR updated >= " + d_.time_ago +
+            " ORDER BY seq",
+        {std::max(0.0, seconds)}));
+  }
+
+ private:
+  static std::string dismissal_message(JobStatus before) {
+    switch (before) {
+      case JobStatus::accepted:
+        return "dismissed before it started";
+      case JobStatus::running:
+        return "dismissed while running; the run stops at its next check";
+      case JobStatus::successful:
+        return "dismissed after it had completed; its files were deleted";
+      default:
+        return "dismissed after it had failed; its files were deleted";
+    }
+  }
+
+  void migrate() {
+    auto db = db_->connect();
+    if (d_.migration_lock.empty()) {  // outside the transaction, as before BEGIN IMMEDIATE
+      db->script("CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL)");
+    }
+    sql::Transaction tx(*db);
+    if (!d_.migration_lock.empty()) {
+      db->query(d_.migration_lock);
+      db->script("CREATE TABLE IF NOT EXISTS schema_version (version INTEGER NOT NULL)");
+    }
+    std::int64_t version = 0;
+    const auto rows = db->query("SELECT version FROM schema_version");
+    if (!rows.empty()) {
+      version = rows.front().int64(0);
+    } else {
+      db->execute("INSERT INTO schema_version (version) VALUES (0)");
+    }
+    const auto known = static_cast<std::int64_t>(d_.migrations.size());
+    if (version > known) {
+      throw std::runtime_error("the job database has schema version " + std::to_string(version) +
+                               ", newer than this gearsph (" + std::to_string(known) +
+                               "); upgrade gearsph");
+    }
+    for (auto v = version; v < known; ++v) {
+      db->script(d_.migrations[static_cast<std::size_t>(v)]);
+      db->execute("UPDATE schema_version SET version = ?", {v + 1});
+    }
+    tx.commit();
+  }
+
+  // Records the key for `target`, or answers with what it was used for
+  // before. Inside the submission's transaction: two nodes given the same
+  // key at once agree on one job (PostgreSQL waits for the other insert).
+  std::optional<SubmitResult> claim_key(sql::Connection& db, const std::optional<Idempotency>& idem,
+                                        const std::string& target) {
+    if (!idem) return std::nullopt;
+    const auto inserted = db.execute(
+        "INSERT INTO idempotency_keys (scope, key, request, target_id, created) VALUES "
+        "(?, ?, ?, ?, " +
+            now_ + ") ON CONFLICT (scope, key) DO NOTHING",
+        {idem->scope, idem->key, idem->request, target});
+    if (inserted > 0) return std::nullopt;
+    const auto rows =
+        db.query("SELECT request, target_id FROM idempotency_keys WHERE scope = ? AND key = ?",
+                 {idem->scope, idem->key});
+    const bool same = rows.front().text(0) == idem->request;
+    return SubmitResult{same ? SubmitResult::Kind::existing : SubmitResult::Kind::conflict,
+                        rows.front().text(1)};
+  }
+
+  void insert_job(sql::Connection& db, const NewJob& j) {
+    db.execute(
+        "INSERT INTO jobs (id, status, name, job_json, study_id, study_index, parameters_json, "
+        "particles, steps, end_s, message, created, updated) VALUES (?, 'accepted', ?, ?, ?, ?, "
+        "?, ?, ?, ?, 'queued', " +
+            now_ + ", " + now_ + ")",
+        {j.id, j.name, j.job_json, j.study_id.empty() ? sql::Value() : sql::Value(j.study_id),
+         j.study_index, j.parameters_json, j.particles, j.steps, j.end_s});
+  }
+
+  std::unique_ptr<sql::Database> db_;
+  const sql::Dialect& d_;
+  const std::string now_;
+};
+
+}  // namespace
+
+std::unique_ptr<JobStore> open_sql_job_store(std::unique_ptr<sql::Database> db) {
+  return std::make_unique<SqlJobStore>(std::move(db));
+}
+
+bool is_postgres_uri(std::string_view s) {
+  return s.rfind("postgresql://", 0) == 0 || s.rfind("postgres://", 0) == 0;
+}
+
+std::unique_ptr<JobStore> open_job_store(const std::string& location) {
+  if (is_postgres_uri(location)) return open_postgres_job_store(location);
+  const std::string_view prefix = "sqlite:";
+  if (location.rfind(prefix, 0) == 0) {
+    return open_sqlite_job_store(location.substr(prefix.size()));
+  }
+  return open_sqlite_job_store(location);
+}
+
+}  // namespace gearsph::server

@@ -1,0 +1,194 @@
+// The job store's SQL seam on PostgreSQL: one database shared by any number
+// of API nodes and worker processes. Claims pick their row with
+// FOR UPDATE SKIP LOCKED, so workers never wait for each other and never get
+// the same job; leases are on the database's clock; migrations run under an
+// advisory lock, so processes starting together migrate once.
+#include <string>
+
+#include "server/job_store.hpp"
+
+#ifdef GEARSPH_WITH_POSTGRESQL
+#include "server/postgres.hpp"
+#include "server/sql.hpp"
+#endif
+
+namespace gearsph::server {
+
+#ifndef GEARSPH_WITH_POSTGRESQL
+
+std::unique_ptr<JobStore> open_postgres_job_store(const std::string&) {
+  throw std::runtime_error(
+      "this gearsph was built without PostgreSQL (install libpq-dev and build again)");
+}
+
+#else
+
+namespace {
+
+// Migration i brings the schema from version i to i + 1. Append, never edit.
+const char* const kMigration1 = R"sql(
+CREATE TABLE studies (
+  seq       BIGSERIAL PRIMARY KEY,
+  id        TEXT NOT NULL UNIQUE,
+  name      TEXT NOT NULL,
+  spec_json TEXT NOT NULL,
+  created   TEXT NOT NULL
+);
+CREATE TABLE jobs (
+  seq             BIGSERIAL PRIMARY KEY,
+  id              TEXT NOT NULL UNIQUE,
+  status          TEXT NOT NULL
+                  CHECK (status IN ('accepted','running','successful','failed','dismissed')),
+  name            TEXT NOT NULL,
+  job_json        TEXT NOT NULL,
+  study_id        TEXT REFERENCES studies(id),
+  study_index     BIGINT NOT NULL DEFAULT 0,
+  parameters_json TEXT NOT NULL DEFAULT '{}',
+  particles       BIGINT NOT NULL DEFAULT 0 CHECK (particles >= 0),
+  steps           BIGINT NOT NULL DEFAULT 0 CHECK (steps >= 0),
+  end_s           DOUBLE PRECISION NOT NULL DEFAULT 0,
+  step            BIGINT NOT NULL DEFAULT 0 CHECK (step >= 0),
+  simulated_s     DOUBLE PRECISION NOT NULL DEFAULT 0,
+  wall_s          DOUBLE PRECISION NOT NULL DEFAULT 0,
+  eta_s           DOUBLE PRECISION NOT NULL DEFAULT 0,
+  progress        INTEGER NOT NULL DEFAULT 0 CHECK (progress BETWEEN 0 AND 100),
+  attempts        INTEGER NOT NULL DEFAULT 0 CHECK (attempts >= 0),
+  message         TEXT NOT NULL DEFAULT '',
+  created         TEXT NOT NULL,
+  started         TEXT,
+  finished        TEXT,
+  updated         TEXT NOT NULL,
+  worker          TEXT,
+  lease_until     TIMESTAMPTZ,
+  dispatch_ref    TEXT,
+  CHECK (status <> 'running' OR started IS NOT NULL),
+  CHECK (status NOT IN ('successful','failed') OR finished IS NOT NULL)
+);
+CREATE INDEX jobs_by_status ON jobs(status, seq);
+CREATE INDEX jobs_by_study ON jobs(study_id, study_index);
+CREATE INDEX jobs_by_updated ON jobs(updated);
+CREATE INDEX jobs_by_dispatch ON jobs(dispatch_ref) WHERE dispatch_ref IS NOT NULL;
+CREATE TABLE idempotency_keys (
+  scope     TEXT NOT NULL,
+  key       TEXT NOT NULL,
+  request   TEXT NOT NULL,
+  target_id TEXT NOT NULL,
+  created   TEXT NOT NULL,
+  PRIMARY KEY (scope, key)
+);
+)sql";
+
+// ISO 8601 UTC with milliseconds, as SQLite's strftime writes them.
+#define GEARSPH_ISO(t) "to_char((" t ") AT TIME ZONE 'UTC', 'YYYY-MM-DD\"T\"HH24:MI:SS.MS\"Z\"')"
+
+sql::Dialect postgres_dialect() {
+  return sql::Dialect{
+      .now = GEARSPH_ISO("clock_timestamp()"),
+      .seconds_param = "?::float8",
+      .lease_clock = "clock_timestamp()",
+      .lease_in = "clock_timestamp() + ?::float8 * interval '1 second'",
+      .time_ago = GEARSPH_ISO("clock_timestamp() - ?::float8 * interval '1 second'"),
+      // A job another worker is claiming right now is passed over, not waited for.
+      .skip_locked = " FOR UPDATE SKIP LOCKED",
+      .lock_row = " FOR UPDATE",
+      .migration_lock = "SELECT pg_advisory_xact_lock(7146301)",  // any fixed number
+      .migrations = {kMigration1},
+  };
+}
+
+#undef GEARSPH_ISO
+
+// "... ? ... ?" -> "... $1 ... $2", leaving quoted text alone.
+std::string numbered_parameters(const std::string& sql) {
+  std::string out;
+  int n = 0;
+  char quote = 0;
+  for (char c : sql) {
+    if (quote) {
+      if (c == quote) quote = 0;
+    } else if (c == '\'' || c == '"') {
+      quote = c;
+    } else if (c == '?') {
+      out += '$' + std::to_string(++n);
+      continue;
+    }
+    out += c;
+  }
+  return out;
+}
+
+postgres::Params params_of(const sql::Values& values) {
+  postgres::Params out;
+  for (const sql::Value& v : values) {
+    std::visit(
+        [&](const auto& x) {
+          using T = std::decay_t<decltype(x)>;
+          if constexpr (std::is_same_v<T, std::monostate>) {
+            out.push_back(postgres::Param());
+          } else {
+            out.push_back(postgres::param(x));
+          }
+        },
+        v);
+  }
+  return out;
+}
+
+class PostgresConnection : public sql::Connection {
+ public:
+  explicit PostgresConnection(postgres::Pool::Lease lease) : db_(std::move(lease)) {}
+
+  sql::Rows query(const std::string& text, const sql::Values& params) override {
+    const postgres::Result r = db_->exec(numbered_parameters(text), params_of(params));
+    sql::Rows rows;
+    for (int i = 0; i < r.rows(); ++i) {
+      std::vector<sql::Value> cells;
+      for (int c = 0; c < r.columns(); ++c) {
+        if (r.is_null(i, c)) {
+          cells.emplace_back(std::monostate{});
+        } else {
+          cells.emplace_back(r.text(i, c));
+        }
+      }
+      rows.emplace_back(std::move(cells));
+    }
+    return rows;
+  }
+
+  std::int64_t execute(const std::string& text, const sql::Values& params) override {
+    return db_->exec(numbered_parameters(text), params_of(params)).affected();
+  }
+
+  void script(const std::string& text) override { db_->exec(text); }
+  void begin() override { db_->exec("BEGIN"); }
+  void commit() override { db_->exec("COMMIT"); }
+  void rollback() override {
+    if (db_->ok()) db_->exec("ROLLBACK");  // else the server rolled back already
+  }
+
+ private:
+  postgres::Pool::Lease db_;
+};
+
+class PostgresDatabase : public sql::Database {
+ public:
+  explicit PostgresDatabase(const std::string& uri) : pool_(uri), dialect_(postgres_dialect()) {}
+  const sql::Dialect& dialect() const override { return dialect_; }
+  std::unique_ptr<sql::Connection> connect() override {
+    return std::make_unique<PostgresConnection>(pool_.acquire());
+  }
+
+ private:
+  postgres::Pool pool_;
+  const sql::Dialect dialect_;
+};
+
+}  // namespace
+
+std::unique_ptr<JobStore> open_postgres_job_store(const std::string& uri) {
+  return open_sql_job_store(std::make_unique<PostgresDatabase>(uri));
+}
+
+#endif
+
+}  // namespace gearsph::server
