@@ -150,6 +150,14 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
       if (surface) {
         // True-surface gap (contact_surface.hpp); normals turned with the material.
         if (!std::isfinite(p.surf_depth[i]) || !std::isfinite(p.surf_depth[j])) continue;
+        // Two particles on their outlines (body-fitted, depth 0) further
+        // apart than a spacing are not touching, whatever their tangent
+        // lines say: a corner beside a flank a spacing away passes the
+        // half-plane test.
+        if (p.surf_depth[i] == 0.0 && p.surf_depth[j] == 0.0 &&
+            dxij * dxij + dyij * dyij >= dx * dx) {
+          continue;
+        }
         const SurfacePair sp = surface_pair(dxij, dyij, normal_x[i], normal_y[i], normal_x[j],
                                             normal_y[j], p.surf_depth[i], p.surf_depth[j], dx);
         if (!sp.active) continue;

@@ -284,7 +284,7 @@ inline double viscosity_pair(double dw0, double h, double vr, double r2, double 
 // 2.2x slower in the F loop; docs/speed-accuracy.md).
 // Momentum loop, pass 1 for chunk c; returns the energy the hourglass
 // control removed per unit time (the viscosity's: accelerations_per_particle).
-template <bool kHourglass, bool kCount, bool kUniform>
+template <bool kHourglass, bool kCount, bool kUniform, bool kGraded>
 double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
   Particles& p = sim.particles;
   ReferencePairs& rp = sim.reference;
@@ -294,22 +294,21 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
   const double hg = sim.method.hourglass.coefficient;
   const double alpha = av.alpha, beta = av.beta;
   const double eta2 = (av.eta_over_h * h) * (av.eta_over_h * h);
-  // Graded particles: the pair's own h_ij = (h_i + h_j) / 2 (a predictable
-  // branch: hp is there for a whole run or not at all).
-  const double* hp = rp.hp.empty() ? nullptr : rp.hp.data();
+  // Graded particles (kGraded): the pair's own h_ij = (h_i + h_j) / 2.
+  const double* hp = rp.hp.data();
   const double eta_over_h2 = av.eta_over_h * av.eta_over_h;
   const std::uint32_t* rows = rp.rows.data();
   const std::uint32_t* jj = rp.j.data();
   const double *gix = rp.gix.data(), *giy = rp.giy.data();
   const double *gjx = rp.gjx.data(), *gjy = rp.gjy.data();
   const double *dw0 = rp.dw0.data(), *w0 = rp.w0.data();
+  const double* e_over_rho0 = rp.e_over_rho0.data();
   const double *Pxx = rp.px.data(), *Pxy = rp.py.data();
   const double *Pyx = rp.pyx.data(), *Pyy = rp.pyy.data();
   const double* vol0 = rp.vol0.data();
   const double *x = p.x.data(), *y = p.y.data(), *vx = p.vx.data(), *vy = p.vy.data();
   const double *x0 = p.x0.data(), *y0 = p.y0.data();
   const double *cs = p.cs.data(), *rho = p.rho.data(), *mass = p.mass.data();
-  const double* rho0 = p.rho0.data();
   const double *Fxx = p.fxx.data(), *Fxy = p.fxy.data(), *Fyx = p.fyx.data(), *Fyy = p.fyy.data();
   // Sums per particle: stress share and viscosity side by side (4 i + q),
   // hourglass apart (components 4 and 5 of the spill window).
@@ -327,8 +326,7 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
     }
   }
   for (std::size_t i = lo; i < hi; ++i) {
-    const double inv_rho0 = 1.0 / rho0[i];
-    const double e_mod = kHourglass ? sim.material_of(i).E : 0.0;
+    const double e_mod = kHourglass ? e_over_rho0[i] : 0.0;
     const double xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
     const double csi = cs[i], rhoi = rho[i], mi = mass[i], vi = vol0[i];
     const double qxx = Pxx[i], qxy = Pxy[i], qyx = Pyx[i], qyy = Pyy[i];  // V0_i P_i
@@ -351,10 +349,15 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
         const double r2 = dx * dx + dy * dy;
         const double vr = dvx * dx + dvy * dy;
         const double cs_mean = kUniform ? cs_all : 0.5 * (csi + cs[j]);
-        const double hij = !kUniform && hp ? 0.5 * (hp[i] + hp[j]) : h;
-        const double q = !kUniform && hp ? r2 + eta_over_h2 * hij * hij : r2 + eta2;
-        const double pg =
-            viscosity_pair(dw0[k], hij, vr, r2, q, alpha, beta, cs_mean, 0.5 * (rhoi + rho[j]));
+        double pg;
+        if constexpr (kGraded) {
+          const double hij = 0.5 * (hp[i] + hp[j]);
+          pg = viscosity_pair(dw0[k], hij, vr, r2, r2 + eta_over_h2 * hij * hij, alpha, beta,
+                              cs_mean, 0.5 * (rhoi + rho[j]));
+        } else {
+          pg = viscosity_pair(dw0[k], h, vr, r2, r2 + eta2, alpha, beta, cs_mean,
+                              0.5 * (rhoi + rho[j]));
+        }
         if constexpr (kCount) approaching += vr < 0.0 ? 1 : 0;
         const double mj = kUniform ? mass_all : mass[j];
         vsx -= mj * pg * dx;
@@ -363,23 +366,24 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
         const double mpg = mi * pg;
         add_product(to + 4 * t, Four{share_x, share_y, mpg, mpg}, Four{1.0, 1.0, dx, dy});
         if constexpr (kHourglass) {
-          // Ganzenmueller 2015: penalise x_ij - F_mean X_ij along the pair.
+          // Ganzenmueller 2015, eqs. (23)-(27): the pair's stretch that the
+          // mean deformation gradient does not explain, e = x_ij - F_mean
+          // X_ij, pulled back along the pair with the stiffness
+          // hg E_i V_j W / (2 |X|^2 rho0_i), times e . x_ij / r^2 (the
+          // stretch per length along the unit pair twice: no square root).
+          // w0 holds W / (2 |X|^2), e_over_rho0 E / rho0 (set-up).
           const double X = x0[i] - x0[j], Y = y0[i] - y0[j];
-          const double vj = vol0[j];
           const double fxx = 0.5 * (Fxx[i] + Fxx[j]), fxy = 0.5 * (Fxy[i] + Fxy[j]);
           const double fyx = 0.5 * (Fyx[i] + Fyx[j]), fyy = 0.5 * (Fyy[i] + Fyy[j]);
           const double ex = dx - (fxx * X + fxy * Y), ey = dy - (fyx * X + fyy * Y);
-          const double inv_r = 1.0 / std::sqrt(r2);
-          const double stretch = (ex * dx + ey * dy) * inv_r;
-          const double R2 = X * X + Y * Y;
-          const double e_j = sim.material_of(j).E;
-          const double fi = -0.5 * hg * e_mod * vj * inv_rho0 * w0[k] * stretch / R2 * inv_r;
-          const double fj = -0.5 * hg * e_j * vi * (1.0 / rho0[j]) * w0[k] * stretch / R2 * inv_r;
+          const double common = -hg * w0[k] * (ex * dx + ey * dy) / r2;
+          const double fi = common * e_mod * vol0[j];
+          const double fj = common * e_over_rho0[j] * vi;
           hsx += fi * dx;
           hsy += fi * dy;
           hg_to[0][t] += fj * -dx;
           hg_to[1][t] += fj * -dy;
-          dissipated -= 0.5 * (mi * fi + mj * fj) * (dvx * dx + dvy * dy);
+          dissipated -= 0.5 * (mi * fi + mj * fj) * vr;
         }
       }
     };
@@ -402,11 +406,15 @@ template <bool kHourglass>
 double momentum_pairs(Simulation& sim, RowChunks& chunks, int c) {
   const bool count = count_approaching(sim.step);
   if (sim.reference.uniform.all) {
-    return count ? momentum_pairs_of<kHourglass, true, true>(sim, chunks, c)
-                 : momentum_pairs_of<kHourglass, false, true>(sim, chunks, c);
+    return count ? momentum_pairs_of<kHourglass, true, true, false>(sim, chunks, c)
+                 : momentum_pairs_of<kHourglass, false, true, false>(sim, chunks, c);
   }
-  return count ? momentum_pairs_of<kHourglass, true, false>(sim, chunks, c)
-               : momentum_pairs_of<kHourglass, false, false>(sim, chunks, c);
+  if (!sim.reference.hp.empty()) {
+    return count ? momentum_pairs_of<kHourglass, true, false, true>(sim, chunks, c)
+                 : momentum_pairs_of<kHourglass, false, false, true>(sim, chunks, c);
+  }
+  return count ? momentum_pairs_of<kHourglass, true, false, false>(sim, chunks, c)
+               : momentum_pairs_of<kHourglass, false, false, false>(sim, chunks, c);
 }
 
 // Momentum loop, pass 2 for chunk c, per particle: the own share

@@ -32,8 +32,11 @@ struct ReferencePairs {
   // the other end's reference volume.
   Column<double> gix, giy;  // G_ij
   Column<double> gjx, gjy;  // G_ji
-  Column<double> w0;        // W(|X_ij|), kept only with hourglass control
-  Column<double> dw0;       // dW/dr at |X_ij|
+  // W(|X_ij|) / (2 |X_ij|^2), the hourglass control's pair weight, kept
+  // only with it; and E / rho0 per particle (Ganzenmueller 2015).
+  Column<double> w0;
+  Column<double> e_over_rho0;
+  Column<double> dw0;  // dW/dr at |X_ij|
   // V0 P (the first Piola-Kirchhoff stress times the reference volume),
   // cached per particle: V0 P = [[px, py], [pyx, pyy]]. With the volume in
   // it, a momentum pair takes V0_j P_j G_ji whole (no volume gathered, four

@@ -106,7 +106,9 @@ void build_pairs(Simulation& sim, const ReferencePairs::Basis& basis) {
           const std::uint32_t j = rp.j[k];
           const double dx = p.x0[i] - p.x0[j], dy = p.y0[i] - p.y0[j];
           const double r = std::sqrt(dx * dx + dy * dy);
-          if (basis.keep_w) rp.w0[k] = graded ? K::W_at(r, h_of(i, j)) : kernel.W(r);
+          if (basis.keep_w) {
+            rp.w0[k] = 0.5 * (graded ? K::W_at(r, h_of(i, j)) : kernel.W(r)) / (r * r);
+          }
           rp.dw0[k] = graded ? K::dW_at(r, h_of(i, j)) : kernel.dW(r);
           mom[i].add(-rp.vol0[j] * rp.dw0[k] / r, dx, dy, quadratic);
           mom[j].add(-rp.vol0[i] * rp.dw0[k] / r, -dx, -dy, quadratic);
@@ -156,6 +158,10 @@ void start_state(Simulation& sim) {
   for (auto* v : {&rp.px, &rp.py, &rp.pyx, &rp.pyy, &rp.ux, &rp.uy}) v->assign(n, 0.0);
   rp.sums.assign(4 * n, 0.0);
   rp.approaching.assign(n, 0);
+  rp.e_over_rho0.assign(rp.basis.keep_w ? n : 0, 0.0);
+  for (std::size_t i = 0; i < rp.e_over_rho0.size(); ++i) {
+    rp.e_over_rho0[i] = sim.material_of(i).E / sim.particles.rho0[i];
+  }
   rp.hg_ax.assign(rp.basis.keep_w ? n : 0, 0.0);
   rp.hg_ay.assign(rp.basis.keep_w ? n : 0, 0.0);
   const Particles& p = sim.particles;

@@ -148,6 +148,33 @@ json gear_static_job() {
             {"rack", {{"velocity_m_s", 0.0}, {"load_N", 1000.0}}}}}};
 }
 
+// A static check of the paper's pinion with tooth 0 loaded alone at
+// `contact_point` (1 kN rack load), at the default particles.
+json gear_fillet_job(const std::string& contact_point) {
+  return {{"name", "gear-fillet-" + contact_point},
+          {"scene",
+           {{"type", "rack_pinion"},
+            {"quasi_static", true},
+            {"contact_point", contact_point},
+            {"pinion", {{"omega_rad_s", 0.0}}},
+            {"rack", {{"velocity_m_s", 0.0}, {"load_N", 1000.0}}}}}};
+}
+
+// Kirsch: d/W = 0.2, L = 3 W (quick: a smaller plate, L = 2 W), the default
+// body-fitted particles (a/10 at the hole).
+json kirsch_job(bool quick) {
+  return {{"name", "kirsch"},
+          {"scene",
+           {{"type", "plate_with_hole"},
+            {"width_m", quick ? 0.02 : 0.04},
+            {"length_m", quick ? 0.04 : 0.12},
+            {"hole_radius_m", quick ? 0.002 : 0.004}}}};
+}
+
+json lame_job() {
+  return {{"name", "lame"}, {"scene", {{"type", "thick_cylinder"}}}};
+}
+
 }  // namespace
 
 std::vector<Case> cases(bool quick) {
@@ -212,6 +239,28 @@ std::vector<Case> cases(bool quick) {
                  Case::Kind::Relative,
                  "depends on the spacing (5.7, 5.8, 11.5 N/(mm um) at 1, 0.5, 0.25 mm): a "
                  "few particle pairs carry the contact (docs/gears.md)"});
+  // Stress at a curved free boundary, recovered on the true outline
+  // (validation.md section 10).
+  out.push_back({"kirsch/peak_hoop_stress", "10", "peak hoop stress at the hole [Pa]",
+                 "Howland's finite-width plate (Heywood: Kt_net = 2 + (1 - d/W)^3)", 0.03,
+                 kirsch_job(quick),
+                 relative("peak_hoop_stress_Pa", "reference_peak_hoop_stress_Pa")});
+  out.push_back({"lame/bore_hoop_stress", "10", "hoop stress at the bore [Pa]",
+                 "Lame: p (b^2 + a^2) / (b^2 - a^2)", 0.02, lame_job(),
+                 relative("bore_hoop_stress_Pa", "reference_bore_hoop_stress_Pa")});
+  out.push_back({"lame/bore_displacement", "10", "radial displacement of the bore [m]",
+                 "Lame, plane strain: (1 + nu) p a^2 / (E (b^2 - a^2)) [(1 - 2 nu) a + b^2 / a]",
+                 0.02, lame_job(),
+                 relative("bore_displacement_m", "reference_bore_displacement_m")});
+  // The gear's fillet, tooth 0 loaded alone, against ISO 6336-3 method B
+  // at the same load radius (its formulas' own accuracy, about 15 %).
+  for (const char* point : {"pitch", "hpstc", "tip"}) {
+    out.push_back(
+        {std::string("gear_fillet/") + point, "10", "tension fillet peak sigma_1 [Pa]",
+         "ISO 6336-3 sigma_F0 = Ft / (b m) Y_F Y_S at the load radius", 0.15,
+         gear_fillet_job(point),
+         relative("static_check/fillet_tension_peak_Pa", "static_check/iso_sigma_F0_Pa")});
+  }
   return out;
 }
 
