@@ -114,6 +114,117 @@ const std::vector<std::string>& fillet_keys() {
   return keys;
 }
 
+namespace {
+
+// The job's model with what the options change: an SPH run's load, another
+// support, more teeth; and where its load comes from, in words.
+struct CheckCase {
+  GearFeJob job;
+  std::string load_source, radius_source;
+  bool whole = false;
+};
+
+CheckCase check_case(GearFeJob job, const FeCheckOptions& o,
+                     const geometry::PinionGeometry& pinion) {
+  CheckCase k{std::move(job), "the job's rack load per gear, F_n = load_N / cos(alpha)", "", false};
+  GearFeCase& c = k.job.model;
+  k.radius_source = "the job's contact_point (" + k.job.contact_point + ")";
+  if (o.normal_force_N) {
+    c.normal_force_N = *o.normal_force_N;
+    k.load_source = o.load_source.empty() ? "given" : o.load_source;
+  }
+  if (o.load_radius_m) {
+    c.load_radius_m = std::clamp(*o.load_radius_m, pinion.form_radius(), pinion.tip_radius());
+    k.radius_source = o.load_source.empty() ? "given" : o.load_source;
+  }
+  if (o.rim_depth_m) {
+    k.job.rim_depth_m = *o.rim_depth_m;
+    c.fixed_radius_m = pinion.root_radius() - k.job.rim_depth_m;
+  }
+  if (o.neighbours) c.neighbours = *o.neighbours;
+  c.whole_gear = o.whole_gear;
+  k.whole = c.whole_gear || 2 * c.neighbours + 1 >= pinion.teeth();
+  return k;
+}
+
+nlohmann::json model_json(const CheckCase& k, const geometry::PinionGeometry& pinion,
+                          const FeTools& tools, double step) {
+  const GearFeCase& c = k.job.model;
+  return {
+      {"frame", "gear frame of gear_profile.hpp: pinion centre at the origin, tooth 0 along -y"},
+      {"teeth",
+       k.whole ? nlohmann::json("all") : nlohmann::json::array({-c.neighbours, c.neighbours})},
+      {"held", k.whole ? "u = 0 on the bore r = fixed_radius_m"
+                       : "u = 0 on the inner arc r = fixed_radius_m (where the SPH hub ring "
+                         "begins); the radial cut sides are free"},
+      {"fixed_radius_m", c.fixed_radius_m},
+      {"rim_depth_m", k.job.rim_depth_m},
+      {"root_radius_m", pinion.root_radius()},
+      {"element", "CPE6: six-node plane-strain triangle (CalculiX), quadratic, unit thickness"},
+      {"material", {{"E_Pa", c.E_Pa}, {"nu", c.nu}}},
+      {"face_width_m", c.face_width_m},
+      {"fillet_stress",
+       "CalculiX's nodal stresses (extrapolated from the integration points, averaged between "
+       "elements), interpolated along the fillet's boundary edges by their quadratic shape "
+       "functions at the samples of gear/fillet.hpp's curves"},
+      {"fillet_sample_step_m", step},
+      {"mesher", "gmsh " + tools.gmsh.string()},
+      {"solver", "CalculiX " + tools.ccx.string()}};
+}
+
+nlohmann::json load_json(const CheckCase& k, const GearLoadPatch& load, double ft) {
+  const GearFeCase& c = k.job.model;
+  return {{"normal_force_N", c.normal_force_N},
+          {"tangential_force_N", ft},
+          {"source", k.load_source},
+          {"radius_source", k.radius_source},
+          {"contact_point", k.job.contact_point},
+          {"requested_radius_m", load.requested_radius_m},
+          {"load_radius_m", load.radius_m},
+          {"flank", c.flank_side < 0 ? "tooth 0's -x flank (clockwise pinion)"
+                                     : "tooth 0's +x flank (counter-clockwise pinion)"},
+          {"direction", xy(load.direction)},
+          {"centre_m", xy(load.centre)},
+          {"distribution",
+           "Hertzian pressure p0 sqrt(1 - (d/a)^2) over the flank, line contact of the "
+           "involute on the flat rack flank (Johnson 1985, 4.45), scaled to F_n exactly"},
+          {"hertz_half_width_m", load.half_width_m},
+          {"hertz_peak_pressure_Pa", load.peak_pressure_Pa},
+          {"involute_curvature_radius_m", load.curvature_radius_m}};
+}
+
+// Every mesh against the reference (the finest), and the last two as the
+// coarse-fine pair.
+void add_convergence(const nlohmann::json& meshes, nlohmann::json& s) {
+  const nlohmann::json& top = meshes.back();
+  nlohmann::json convergence;
+  nlohmann::json sizes = nlohmann::json::array();
+  for (const nlohmann::json& m : meshes) sizes.push_back(m.at("fillet_size_m"));
+  convergence["fillet_sizes_m"] = sizes;
+  for (const std::string& key : fillet_keys()) {
+    nlohmann::json values = nlohmann::json::array(), diffs = nlohmann::json::array();
+    const double ref_v = top.at(key).get<double>();
+    for (const nlohmann::json& m : meshes) {
+      values.push_back(m.at(key));
+      diffs.push_back((m.at(key).get<double>() - ref_v) / std::abs(ref_v));
+    }
+    convergence[key] = {{"values", values}, {"relative_to_reference", diffs}};
+  }
+  s["convergence"] = convergence;
+  if (meshes.size() < 2) return;
+  const nlohmann::json& coarse = meshes[meshes.size() - 2];
+  nlohmann::json diff;
+  for (const std::string& key : fillet_keys()) {
+    const double fine = top.at(key).get<double>();
+    diff[key] = {{"coarse", coarse.at(key)},
+                 {"fine", fine},
+                 {"relative_difference", (coarse.at(key).get<double>() - fine) / std::abs(fine)}};
+  }
+  s["coarse_fine_difference"] = diff;
+}
+
+}  // namespace
+
 nlohmann::json run_fe_check(const nlohmann::json& job, const std::filesystem::path& out_dir,
                             const FeCheckOptions& o) {
   using Clock = std::chrono::steady_clock;
@@ -121,26 +232,10 @@ nlohmann::json run_fe_check(const nlohmann::json& job, const std::filesystem::pa
   auto log = [&o](const std::string& line) {
     if (o.log) o.log(line);
   };
-  GearFeJob j = read_gear_fe_job(job);
-  GearFeCase& c = j.model;
-  const geometry::PinionGeometry pinion(c.pinion);
-  std::string load_source = "the job's rack load per gear, F_n = load_N / cos(alpha)";
-  if (o.normal_force_N) {
-    c.normal_force_N = *o.normal_force_N;
-    load_source = o.load_source.empty() ? "given" : o.load_source;
-  }
-  std::string radius_source = "the job's contact_point (" + j.contact_point + ")";
-  if (o.load_radius_m) {
-    c.load_radius_m = std::clamp(*o.load_radius_m, pinion.form_radius(), pinion.tip_radius());
-    radius_source = o.load_source.empty() ? "given" : o.load_source;
-  }
-  if (o.rim_depth_m) {
-    j.rim_depth_m = *o.rim_depth_m;
-    c.fixed_radius_m = pinion.root_radius() - j.rim_depth_m;
-  }
-  if (o.neighbours) c.neighbours = *o.neighbours;
-  c.whole_gear = o.whole_gear;
-  const bool whole = c.whole_gear || 2 * c.neighbours + 1 >= pinion.teeth();
+  GearFeJob read = read_gear_fe_job(job);
+  const geometry::PinionGeometry pinion(read.model.pinion);
+  const CheckCase k = check_case(std::move(read), o, pinion);
+  const GearFeCase& c = k.job.model;
   const FeTools tools = find_fe_tools();
 
   std::vector<double> sizes =
@@ -163,12 +258,12 @@ nlohmann::json run_fe_check(const nlohmann::json& job, const std::filesystem::pa
     work = temp->path();
   }
   std::vector<GearFeResult> results;
-  for (std::size_t k = 0; k < sizes.size(); ++k) {
+  for (double size : sizes) {
     if (o.cancelled && o.cancelled()) throw FeFailed("the FE check was cancelled");
     char name[48];
-    std::snprintf(name, sizeof name, "tooth0_%.4gmm", 1e3 * sizes[k]);
-    log("meshing and solving with " + mm(sizes[k]) + " elements at the fillets");
-    results.push_back(solve_gear_fe(c, gear_mesh_sizes(pinion, sizes[k]), step, tools, work, name,
+    std::snprintf(name, sizeof name, "tooth0_%.4gmm", 1e3 * size);
+    log("meshing and solving with " + mm(size) + " elements at the fillets");
+    results.push_back(solve_gear_fe(c, gear_mesh_sizes(pinion, size), step, tools, work, name,
                                     o.threads, o.timeout_s));
     const GearFeResult& r = results.back();
     char line[200];
@@ -183,87 +278,28 @@ nlohmann::json run_fe_check(const nlohmann::json& job, const std::filesystem::pa
 
   // ISO 6336-3 method B at the FE load's radius: sigma_F0 = F_t / (b m) Y_F Y_S.
   const gear::IsoToothForm iso = gear::iso_tooth_form(pinion, ref.load.radius_m);
-  const double ft = c.normal_force_N * std::cos(j.pressure_angle);
-  const double sigma_F0 = ft / (c.face_width_m * j.module_m) * iso.Y_F * iso.Y_S;
+  const double ft = c.normal_force_N * std::cos(k.job.pressure_angle);
+  const double sigma_F0 = ft / (c.face_width_m * k.job.module_m) * iso.Y_F * iso.Y_S;
 
   nlohmann::json s;
-  s["job"] = j.name;
-  s["model"] = {
-      {"frame", "gear frame of gear_profile.hpp: pinion centre at the origin, tooth 0 along -y"},
-      {"teeth",
-       whole ? nlohmann::json("all") : nlohmann::json::array({-c.neighbours, c.neighbours})},
-      {"held", whole ? "u = 0 on the bore r = fixed_radius_m"
-                     : "u = 0 on the inner arc r = fixed_radius_m (where the SPH hub ring "
-                       "begins); the radial cut sides are free"},
-      {"fixed_radius_m", c.fixed_radius_m},
-      {"rim_depth_m", j.rim_depth_m},
-      {"root_radius_m", pinion.root_radius()},
-      {"element", "CPE6: six-node plane-strain triangle (CalculiX), quadratic, unit thickness"},
-      {"material", {{"E_Pa", c.E_Pa}, {"nu", c.nu}}},
-      {"face_width_m", c.face_width_m},
-      {"fillet_stress",
-       "CalculiX's nodal stresses (extrapolated from the integration points, averaged between "
-       "elements), interpolated along the fillet's boundary edges by their quadratic shape "
-       "functions at the samples of gear/fillet.hpp's curves"},
-      {"fillet_sample_step_m", step},
-      {"mesher", "gmsh " + tools.gmsh.string()},
-      {"solver", "CalculiX " + tools.ccx.string()}};
-  s["load"] = {{"normal_force_N", c.normal_force_N},
-               {"tangential_force_N", ft},
-               {"source", load_source},
-               {"radius_source", radius_source},
-               {"contact_point", j.contact_point},
-               {"requested_radius_m", ref.load.requested_radius_m},
-               {"load_radius_m", ref.load.radius_m},
-               {"flank", c.flank_side < 0 ? "tooth 0's -x flank (clockwise pinion)"
-                                          : "tooth 0's +x flank (counter-clockwise pinion)"},
-               {"direction", xy(ref.load.direction)},
-               {"centre_m", xy(ref.load.centre)},
-               {"distribution",
-                "Hertzian pressure p0 sqrt(1 - (d/a)^2) over the flank, line contact of the "
-                "involute on the flat rack flank (Johnson 1985, 4.45), scaled to F_n exactly"},
-               {"hertz_half_width_m", ref.load.half_width_m},
-               {"hertz_peak_pressure_Pa", ref.load.peak_pressure_Pa},
-               {"involute_curvature_radius_m", ref.load.curvature_radius_m}};
+  s["job"] = k.job.name;
+  s["model"] = model_json(k, pinion, tools, step);
+  s["load"] = load_json(k, ref.load, ft);
   nlohmann::json meshes = nlohmann::json::array();
   for (const GearFeResult& r : results) meshes.push_back(mesh_json(r, c.face_width_m));
   s["meshes"] = meshes;
+  // The reference's numbers at the top, with the SPH static check's names.
   const nlohmann::json& top = meshes.back();
   s["reference_mesh"] = results.size() - 1;
   s["reference_fillet_size_m"] = ref.sizes.fillet;
   for (const std::string& key : fillet_keys()) s[key] = top.at(key);
-  s["fillet_tension_peak_angle_deg"] = top.at("fillet_tension_peak_angle_deg");
+  for (const char* key : {"fillet_tension_peak_angle_deg", "nodes", "elements", "reaction_total_N",
+                          "applied_force_N"}) {
+    s[key] = top.at(key);
+  }
   s["load_radius_m"] = ref.load.radius_m;
   s["tooth0_force_N"] = c.normal_force_N;
-  s["nodes"] = top.at("nodes");
-  s["elements"] = top.at("elements");
-  s["reaction_total_N"] = top.at("reaction_total_N");
-  s["applied_force_N"] = top.at("applied_force_N");
-  // Each mesh against the reference; the coarse-fine pair is the last two.
-  nlohmann::json convergence;
-  for (const std::string& key : fillet_keys()) {
-    nlohmann::json values = nlohmann::json::array(), diffs = nlohmann::json::array();
-    const double ref_v = top.at(key).get<double>();
-    for (const nlohmann::json& m : meshes) {
-      values.push_back(m.at(key));
-      diffs.push_back((m.at(key).get<double>() - ref_v) / std::abs(ref_v));
-    }
-    convergence[key] = {{"values", values}, {"relative_to_reference", diffs}};
-  }
-  convergence["fillet_sizes_m"] = sizes;
-  s["convergence"] = convergence;
-  if (results.size() >= 2) {
-    const nlohmann::json& coarse = meshes[meshes.size() - 2];
-    nlohmann::json diff;
-    for (const std::string& key : fillet_keys()) {
-      diff[key] = {
-          {"coarse", coarse.at(key)},
-          {"fine", top.at(key)},
-          {"relative_difference", (coarse.at(key).get<double>() - top.at(key).get<double>()) /
-                                      std::abs(top.at(key).get<double>())}};
-    }
-    s["coarse_fine_difference"] = diff;
-  }
+  add_convergence(meshes, s);
   s["iso_6336_3"] = {
       {"method", "ISO 6336-3:2006 method B, sigma_F0 = F_t / (b m_n) Y_F Y_S at the load radius"},
       {"load_radius_m", ref.load.radius_m},

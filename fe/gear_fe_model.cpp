@@ -149,6 +149,141 @@ GearLoadPatch load_patch(const geometry::PinionGeometry& g, const GearFeCase& c)
   return p;
 }
 
+// The outline of the model (sector or whole gear, gear frame), cut into
+// curves with groups for the supports ("fixed"), the load ("loaded_flank")
+// and the fillets, and the element sizes around the fillets and the load.
+// Sets out.outline, out.holes and out.fillets.
+MeshSpec model_region(const geometry::PinionGeometry& g, const GearFeCase& c, double sample_step_m,
+                      GearFeResult& out) {
+  const bool whole = c.whole_gear || 2 * c.neighbours + 1 >= g.teeth();
+  out.outline =
+      whole ? g.outline() : g.sector_outline(-c.neighbours, c.neighbours, c.fixed_radius_m);
+  out.fillets = gear::tooth_fillets(g, 0, geometry::Transform{},
+                                    c.normal_force_N * out.load.direction, sample_step_m);
+  const Polygon& poly = out.outline;
+  const std::size_t t0 = nearest_vertex(poly, out.fillets.tension.points.front());
+  const std::size_t t1 = nearest_vertex(poly, out.fillets.tension.points.back());
+  const std::size_t c0 = nearest_vertex(poly, out.fillets.compression.points.front());
+  const std::size_t c1 = nearest_vertex(poly, out.fillets.compression.points.back());
+  const PolygonPieces pieces = polygon_curves(poly, {t0, t1, c0, c1}, kCornerRad);
+
+  CurveLoop loop;
+  int tension_curve = -1, compression_curve = -1, flank_curve = -1;
+  for (std::size_t i = 0; i < pieces.curves.size(); ++i) {
+    Curve piece = pieces.curves[i];
+    const std::size_t v0 = pieces.first_vertex[i];
+    const std::size_t v1 = pieces.first_vertex[(i + 1) % pieces.curves.size()];
+    auto is = [&](std::size_t a, std::size_t b) {
+      return (v0 == a && v1 == b) || (v0 == b && v1 == a);
+    };
+    bool on_fixed = !whole;
+    for (const Point& q : piece.points) {
+      on_fixed = on_fixed && std::abs(geometry::norm(q) - c.fixed_radius_m) < kSamePoint;
+    }
+    if (on_fixed) {  // the sector's inner arc, drawn as exact circular arcs
+      for (Curve& a :
+           arcs(piece.points.front(), piece.points.back(), c.fixed_radius_m, true, "fixed")) {
+        loop.push_back(std::move(a));
+      }
+      continue;
+    }
+    if (is(t0, t1)) {
+      piece.group = "tension_fillet";
+      tension_curve = static_cast<int>(loop.size());
+    } else if (is(c0, c1)) {
+      piece.group = "compression_fillet";
+      compression_curve = static_cast<int>(loop.size());
+    } else if ((v0 == t1 || v1 == t1) &&
+               std::abs(geometry::norm(poly[v0 == t1 ? v1 : v0]) - g.tip_radius()) < 1e-6) {
+      piece.group = "loaded_flank";  // form circle to tip corner
+      flank_curve = static_cast<int>(loop.size());
+    }
+    loop.push_back(std::move(piece));
+  }
+  if (tension_curve < 0 || compression_curve < 0 || flank_curve < 0) {
+    throw std::logic_error("gear FE model: tooth 0's fillets or loaded flank not on the outline");
+  }
+  MeshSpec spec;
+  spec.loops.push_back(std::move(loop));
+  if (whole) {
+    const double r = c.fixed_radius_m;
+    CurveLoop bore = arcs({r, 0.0}, {0.0, r}, r, false, "fixed");
+    for (Curve& a : arcs({0.0, r}, {r, 0.0}, r, false, "fixed")) bore.push_back(std::move(a));
+    spec.loops.push_back(std::move(bore));
+    constexpr int kBoreSides = 256;  // for pictures only
+    Polygon hole;
+    for (int k = 0; k < kBoreSides; ++k) {
+      const double a = 2.0 * kPi * k / kBoreSides;
+      hole.push_back({r * std::cos(a), r * std::sin(a)});
+    }
+    out.holes.push_back(hole);
+  }
+  const GearMeshSizes& sizes = out.sizes;
+  spec.size_max = sizes.max;
+  SizeZone fillets;
+  fillets.curves = {{0, tension_curve}, {0, compression_curve}};
+  fillets.size_min = sizes.fillet;
+  fillets.size_max = sizes.max;
+  fillets.dist_min = sizes.fillet_band;
+  fillets.dist_max = sizes.grow_to;
+  SizeZone load;
+  load.points = {out.load.centre};
+  load.size_min = sizes.load;
+  load.size_max = sizes.max;
+  load.dist_min = sizes.load_band;
+  load.dist_max = std::max(sizes.grow_to, 2.0 * sizes.load_band);
+  spec.zones = {fillets, load};
+  return spec;
+}
+
+// The Hertzian pressure on the loaded flank's boundary edges as nodal
+// forces per unit thickness, scaled so that the force is exactly F_n (the
+// quadrature of the sqrt-shaped patch on edges it covers in part is good to
+// about 1e-4). Sets load.applied_N (per gear).
+std::vector<Point> flank_forces(const TriMesh& mesh, const std::vector<BoundaryEdge>& boundary,
+                                const GearFeCase& c, GearLoadPatch& load) {
+  const std::vector<BoundaryEdge> flank = group_edges(mesh, boundary, "loaded_flank");
+  const GearLoadPatch& lp = load;
+  const Traction hertz = [&lp](Point x, Point normal) {
+    const double d = geometry::norm(x - lp.centre) / lp.half_width_m;
+    const double p = d < 1.0 ? lp.peak_pressure_Pa * std::sqrt(1.0 - d * d) : 0.0;
+    return -p * normal;
+  };
+  std::vector<Point> forces = traction_forces(mesh, flank, hertz, 64);
+  Point total;
+  for (const Point& f : forces) total = total + f;
+  const double scale = c.normal_force_N / c.face_width_m / geometry::norm(total);
+  for (Point& f : forces) f = scale * f;
+  load.applied_N = (scale * c.face_width_m) * total;
+  return forces;
+}
+
+// The stress at the fillet curves' samples: along each fillet's boundary
+// edges, between their nodes' stresses. Sets out.stress and
+// out.curve_to_mesh_m.
+void stress_on_fillets(const std::vector<BoundaryEdge>& boundary, GearFeResult& out) {
+  std::vector<double> sxx, syy, sxy;
+  for (const NodalStress& s : out.solution.stress) {
+    sxx.push_back(s.xx);
+    syy.push_back(s.yy);
+    sxy.push_back(s.xy);
+  }
+  auto read_curve = [&](const gear::FilletCurve& curve, const std::string& group) {
+    const std::vector<BoundaryEdge> edges = group_edges(out.mesh, boundary, group);
+    std::vector<gear::PlaneStress> stress;
+    for (const Point& p : curve.points) {
+      const EdgeHit hit = nearest_edge(out.mesh, edges, p);
+      const BoundaryEdge& e = edges[hit.edge];
+      out.curve_to_mesh_m = std::max(out.curve_to_mesh_m, hit.distance);
+      stress.push_back(
+          {along_edge(e, hit.xi, sxx), along_edge(e, hit.xi, syy), along_edge(e, hit.xi, sxy)});
+    }
+    return stress;
+  };
+  out.stress = gear::fillet_stress(out.fillets, read_curve(out.fillets.tension, "tension_fillet"),
+                                   read_curve(out.fillets.compression, "compression_fillet"));
+}
+
 }  // namespace
 
 GearMeshSizes gear_mesh_sizes(const geometry::PinionGeometry& pinion, double fillet_size_m) {
@@ -198,141 +333,23 @@ GearFeResult solve_gear_fe(const GearFeCase& c, const GearMeshSizes& sizes, doub
   out.sizes = sizes;
   out.load = load_patch(g, c);
   out.sizes.load_band = std::max(sizes.load_band, 1.5 * out.load.half_width_m);
-
-  // Outline and the curves of tooth 0's fillets on it.
-  const bool whole = c.whole_gear || 2 * c.neighbours + 1 >= g.teeth();
-  out.outline =
-      whole ? g.outline() : g.sector_outline(-c.neighbours, c.neighbours, c.fixed_radius_m);
-  out.fillets = gear::tooth_fillets(g, 0, geometry::Transform{},
-                                    c.normal_force_N * out.load.direction, sample_step_m);
-  const Polygon& poly = out.outline;
-  const std::size_t t0 = nearest_vertex(poly, out.fillets.tension.points.front());
-  const std::size_t t1 = nearest_vertex(poly, out.fillets.tension.points.back());
-  const std::size_t c0 = nearest_vertex(poly, out.fillets.compression.points.front());
-  const std::size_t c1 = nearest_vertex(poly, out.fillets.compression.points.back());
-  const PolygonPieces pieces = polygon_curves(poly, {t0, t1, c0, c1}, kCornerRad);
-
-  MeshSpec spec;
-  spec.size_max = sizes.max;
-  CurveLoop loop;
-  int tension_curve = -1, compression_curve = -1, flank_curve = -1;
-  const std::size_t n = poly.size();
-  for (std::size_t i = 0; i < pieces.curves.size(); ++i) {
-    Curve piece = pieces.curves[i];
-    const std::size_t v0 = pieces.first_vertex[i];
-    const std::size_t v1 = pieces.first_vertex[(i + 1) % pieces.curves.size()];
-    auto is = [&](std::size_t a, std::size_t b) {
-      return (v0 == a && v1 == b) || (v0 == b && v1 == a);
-    };
-    bool on_fixed = !whole;
-    for (const Point& q : piece.points) {
-      on_fixed = on_fixed && std::abs(geometry::norm(q) - c.fixed_radius_m) < kSamePoint;
-    }
-    if (on_fixed) {
-      for (Curve& a :
-           arcs(piece.points.front(), piece.points.back(), c.fixed_radius_m, true, "fixed")) {
-        loop.push_back(std::move(a));
-      }
-      continue;
-    }
-    if (is(t0, t1)) {
-      piece.group = "tension_fillet";
-      tension_curve = static_cast<int>(loop.size());
-    } else if (is(c0, c1)) {
-      piece.group = "compression_fillet";
-      compression_curve = static_cast<int>(loop.size());
-    } else if ((v0 == t1 || v1 == t1) &&
-               std::abs(geometry::norm(poly[v0 == t1 ? v1 % n : v0]) - g.tip_radius()) < 1e-6) {
-      piece.group = "loaded_flank";
-      flank_curve = static_cast<int>(loop.size());
-    }
-    loop.push_back(std::move(piece));
-  }
-  if (tension_curve < 0 || compression_curve < 0 || flank_curve < 0) {
-    throw std::logic_error(
-        "gear FE model: tooth 0's fillets or loaded flank not found on the "
-        "outline");
-  }
-  spec.loops.push_back(std::move(loop));
-  if (whole) {
-    const double r = c.fixed_radius_m;
-    CurveLoop bore = arcs({r, 0.0}, {0.0, r}, r, false, "fixed");
-    for (Curve& a : arcs({0.0, r}, {r, 0.0}, r, false, "fixed")) bore.push_back(std::move(a));
-    Polygon hole;
-    for (int k = 0; k < 256; ++k) {
-      hole.push_back({r * std::cos(2.0 * kPi * k / 256), r * std::sin(2.0 * kPi * k / 256)});
-    }
-    out.holes.push_back(hole);
-    spec.loops.push_back(std::move(bore));
-  }
-  SizeZone fillets;
-  fillets.curves = {{0, tension_curve}, {0, compression_curve}};
-  fillets.size_min = sizes.fillet;
-  fillets.size_max = sizes.max;
-  fillets.dist_min = sizes.fillet_band;
-  fillets.dist_max = sizes.grow_to;
-  SizeZone load;
-  load.points = {out.load.centre};
-  load.size_min = sizes.load;
-  load.size_max = sizes.max;
-  load.dist_min = out.sizes.load_band;
-  load.dist_max = std::max(sizes.grow_to, 2.0 * out.sizes.load_band);
-  spec.zones = {fillets, load};
+  const MeshSpec region = model_region(g, c, sample_step_m, out);
 
   const auto t_mesh = Clock::now();
   FeModel model;
-  model.mesh = mesh_with_gmsh(spec, tools, work_dir, name, timeout_s);
+  model.mesh = mesh_with_gmsh(region, tools, work_dir, name, timeout_s);
   out.mesh_s = std::chrono::duration<double>(Clock::now() - t_mesh).count();
-  const TriMesh& mesh = model.mesh;
   model.E_Pa = c.E_Pa;
   model.nu = c.nu;
-  model.supports.push_back({group_nodes(mesh, "fixed"), true, true});
-
-  // The Hertzian pressure on the flank's boundary edges, scaled so that the
-  // force is exactly F_n (the quadrature of the sqrt-shaped patch on edges
-  // it covers in part is good to about 1e-4).
-  const std::vector<BoundaryEdge> boundary = boundary_edges(mesh);
-  const std::vector<BoundaryEdge> flank = group_edges(mesh, boundary, "loaded_flank");
-  const GearLoadPatch& lp = out.load;
-  const Traction hertz = [&lp](Point x, Point normal) {
-    const double d = geometry::norm(x - lp.centre) / lp.half_width_m;
-    const double p = d < 1.0 ? lp.peak_pressure_Pa * std::sqrt(1.0 - d * d) : 0.0;
-    return -p * normal;
-  };
-  model.nodal_forces = traction_forces(mesh, flank, hertz, 64);
-  Point total;
-  for (const Point& f : model.nodal_forces) total = total + f;
-  const double scale = c.normal_force_N / c.face_width_m / geometry::norm(total);
-  for (Point& f : model.nodal_forces) f = scale * f;
-  out.load.applied_N = (scale * c.face_width_m) * total;
+  model.supports.push_back({group_nodes(model.mesh, "fixed"), true, true});
+  const std::vector<BoundaryEdge> boundary = boundary_edges(model.mesh);
+  model.nodal_forces = flank_forces(model.mesh, boundary, c, out.load);
 
   out.solution = solve_with_calculix(model, tools, work_dir, name, threads, timeout_s);
   out.solve_s = out.solution.wall_s;
   out.reaction_N = c.face_width_m * out.solution.reaction;
   out.mesh = std::move(model.mesh);
-
-  // The stress on the fillet curves: along the fillet's boundary edges,
-  // between their nodes' stresses.
-  std::vector<double> sxx, syy, sxy;
-  for (const NodalStress& s : out.solution.stress) {
-    sxx.push_back(s.xx);
-    syy.push_back(s.yy);
-    sxy.push_back(s.xy);
-  }
-  auto read_curve = [&](const gear::FilletCurve& curve, const std::string& group) {
-    const std::vector<BoundaryEdge> edges = group_edges(out.mesh, boundary, group);
-    std::vector<gear::PlaneStress> stress;
-    for (const Point& p : curve.points) {
-      const EdgeHit hit = nearest_edge(out.mesh, edges, p);
-      const BoundaryEdge& e = edges[hit.edge];
-      out.curve_to_mesh_m = std::max(out.curve_to_mesh_m, hit.distance);
-      stress.push_back(
-          {along_edge(e, hit.xi, sxx), along_edge(e, hit.xi, syy), along_edge(e, hit.xi, sxy)});
-    }
-    return stress;
-  };
-  out.stress = gear::fillet_stress(out.fillets, read_curve(out.fillets.tension, "tension_fillet"),
-                                   read_curve(out.fillets.compression, "compression_fillet"));
+  stress_on_fillets(boundary, out);
   return out;
 }
 
