@@ -78,6 +78,7 @@ void validate(const FieldImage& f) {
       throw std::invalid_argument("field image: outline x and y differ in length");
   if (f.width < 200 || f.height < 150)
     throw std::invalid_argument("field image: at least 200 x 150 pixels");
+  if (f.bands < 0) throw std::invalid_argument("field image: bands must not be negative");
 }
 
 // Colour range in SI: given, or from the finite data.
@@ -230,12 +231,19 @@ namespace {
 
 // ------------------------------------------------------------- geometry --
 
+// A position on the map, t in [0, 1], moved to the middle of its band.
+double banded(const FieldImage& f, double t) {
+  if (f.bands <= 0) return t;
+  const double n = f.bands;
+  return (std::clamp(std::floor(t * n), 0.0, n - 1.0) + 0.5) / n;
+}
+
 Rgb8 particle_colour(const FieldImage& f, const FieldLayout& L, std::size_t i) {
   if (categorical(f)) return categorical_colour(f.body[i]);
   const Colormap& map =
       f.colouring == Colouring::Diverging ? diverging_colormap() : sequential_colormap();
   const double v = f.value[i];
-  return std::isnan(v) ? no_data_colour() : map.at((v - L.vmin) / (L.vmax - L.vmin));
+  return std::isnan(v) ? no_data_colour() : map.at(banded(f, (v - L.vmin) / (L.vmax - L.vmin)));
 }
 
 void draw_particles(GlCanvas& c, const FieldImage& f, const FieldLayout& L) {
@@ -283,7 +291,7 @@ void draw_colour_bar(GlCanvas& c, const FieldImage& f, const FieldLayout& L, con
       f.colouring == Colouring::Diverging ? diverging_colormap() : sequential_colormap();
   const Rect& b = L.colour_bar;
   for (double y = b.y0; y < b.y1; y += 1.0)
-    c.fill_rect({b.x0, y, b.x1, y + 1.0}, map.at((b.y1 - y - 0.5) / b.height()));
+    c.fill_rect({b.x0, y, b.x1, y + 1.0}, map.at(banded(f, (b.y1 - y - 0.5) / b.height())));
   draw_box(c, b, 1.0, kInk);
   for (double v : L.ticks.values) {
     const double y = std::round(bar_y(L, v, f.unit_scale) - 0.5);
@@ -357,6 +365,11 @@ void draw_body_names(RgbImage& img, const FieldImage& f, const FieldLayout& L,
 }  // namespace
 
 RgbImage render_field(const FieldImage& f) {
+  return render_field_frame(f,
+                            [&f](GlCanvas& c, const FieldLayout& L) { draw_particles(c, f, L); });
+}
+
+RgbImage render_field_frame(const FieldImage& f, const ViewContent& draw_content) {
   const FieldLayout L = field_layout(f);
   const FieldStyle st(f);
   RgbImage img;
@@ -364,7 +377,7 @@ RgbImage render_field(const FieldImage& f) {
     GlCanvas c(f.width, f.height, f.supersample);
     c.clear(kWhite);
     c.set_clip(L.view);
-    draw_particles(c, f, L);
+    draw_content(c, L);
     draw_outlines(c, f, L, st.scale);
     c.clear_clip();
     draw_box(c, L.view, 1.0, kFrame);

@@ -3,6 +3,7 @@
 // size (diameter = spacing) coloured by a field, outlines on top, a labelled
 // colour bar (or a body legend), a scale bar, title and time stamp.
 // Plain data in, PNG out: no dependency on the solver's classes.
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -40,6 +41,7 @@ struct FieldImage {
   std::optional<double> vmin, vmax;
   enum class Colouring { Sequential, Diverging, Categorical };
   Colouring colouring = Colouring::Sequential;
+  int bands = 0;  // > 0: the map in that many flat bands (filled contours), bar included
   std::vector<std::string> body_names;  // legend for Categorical; default "body k"
   std::vector<Polyline> outlines;       // drawn on top, e.g. pinion and rack outlines
   std::string title;
@@ -65,6 +67,13 @@ struct FieldLayout {
 
 FieldLayout field_layout(const FieldImage& image);
 RgbImage render_field(const FieldImage& image);
+// The same figure with other content in the view: `draw_content` draws
+// into the view (cleared to white, clipped to it) before the outlines go on
+// top. render_field draws the particles; render_mesh (mesh_image.hpp) a
+// shaded triangle field. image.x, y and value still choose the window and
+// the colour range.
+using ViewContent = std::function<void(GlCanvas&, const FieldLayout&)>;
+RgbImage render_field_frame(const FieldImage& image, const ViewContent& draw_content);
 std::vector<unsigned char> render_field_png(const FieldImage& image);
 
 // An SI prefix with an exponent that is a multiple of 3 for values up to

@@ -148,7 +148,8 @@ GlCanvas::GlCanvas(int width, int height, int supersample)
   glOrtho(0.0, width, height, 0.0, -1.0, 1.0);  // image pixels, y down
   glMatrixMode(GL_MODELVIEW);
   glLoadIdentity();
-  for (GLenum cap : {GL_DEPTH_TEST, GL_BLEND, GL_CULL_FACE, GL_DITHER, GL_LIGHTING, GL_TEXTURE_2D})
+  for (GLenum cap : {GL_DEPTH_TEST, GL_BLEND, GL_CULL_FACE, GL_DITHER, GL_LIGHTING, GL_TEXTURE_1D,
+                     GL_TEXTURE_2D})
     glDisable(cap);
   glShadeModel(GL_FLAT);
   clear_clip();
@@ -185,6 +186,54 @@ void GlCanvas::fill_triangle(Point a, Point b, Point c, Rgb8 colour) {
   push(b, colour);
   push(c, colour);
   if (xy_.size() / 2 >= kBatchVertices) flush();
+}
+
+void GlCanvas::fill_mapped_triangles(std::span<const Point> vertices, std::span<const float> t,
+                                     const Colormap& map, int bands) {
+  if (vertices.size() != t.size() || vertices.size() % 3 != 0)
+    throw std::invalid_argument("fill_mapped_triangles: three vertices a triangle, one t each");
+  if (vertices.empty()) return;
+  flush();
+  // Continuous: the whole table, filtered linearly between entries, with
+  // t = 0 and 1 on the first and last texel centres. Bands: one texel per
+  // band, nearest texel, t = 0..1 across all of them.
+  const int texels = bands > 0 ? bands : static_cast<int>(map.size());
+  std::vector<std::uint8_t> table;
+  for (int k = 0; k < texels; ++k) {
+    const Rgb8 c = bands > 0 ? map.at((k + 0.5) / bands) : map.lut()[static_cast<std::size_t>(k)];
+    table.insert(table.end(), {c.r, c.g, c.b});
+  }
+  const float scale = bands > 0 ? 1.0f : (texels - 1.0f) / texels;
+  const float offset = bands > 0 ? 0.0f : 0.5f / texels;
+  std::vector<float> xy, s;
+  xy.reserve(2 * vertices.size());
+  s.reserve(t.size());
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    xy.push_back(static_cast<float>(vertices[i].x));
+    xy.push_back(static_cast<float>(vertices[i].y));
+    s.push_back(offset + scale * t[i]);
+  }
+  GLuint texture = 0;
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_1D, texture);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage1D(GL_TEXTURE_1D, 0, GL_RGB8, texels, 0, GL_RGB, GL_UNSIGNED_BYTE, table.data());
+  const GLint filter = bands > 0 ? GL_NEAREST : GL_LINEAR;
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+  glEnable(GL_TEXTURE_1D);
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_TEXTURE_COORD_ARRAY);
+  glVertexPointer(2, GL_FLOAT, 0, xy.data());
+  glTexCoordPointer(1, GL_FLOAT, 0, s.data());
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices.size()));
+  glDisableClientState(GL_TEXTURE_COORD_ARRAY);
+  glDisableClientState(GL_VERTEX_ARRAY);
+  glDisable(GL_TEXTURE_1D);
+  glBindTexture(GL_TEXTURE_1D, 0);
+  glDeleteTextures(1, &texture);
 }
 
 void GlCanvas::fill_rect(const Rect& r, Rgb8 colour) {

@@ -20,6 +20,8 @@
 
 namespace gearsph::render {
 
+class Colormap;
+
 struct Point {
   double x = 0, y = 0;
 };
@@ -56,6 +58,14 @@ class GlCanvas {
   // A line of the given width with round joins and caps.
   void stroke(std::span<const Point> points, double width_px, Rgb8 colour, bool closed = false);
   void fill_triangle(Point a, Point b, Point c, Rgb8 colour);
+  // Triangles (three vertices each) coloured through `map` by a value t per
+  // vertex (0: the map's first colour, 1: its last), interpolated across
+  // each triangle and looked up per pixel (a 1D texture), so the colours
+  // are the map's own, not blends of the corners' colours; t outside [0, 1]
+  // takes the end colours. bands > 0: that many flat bands of the map
+  // (filled contours), else continuous colours.
+  void fill_mapped_triangles(std::span<const Point> vertices, std::span<const float> t,
+                             const Colormap& map, int bands = 0);
 
   // Finishes drawing and returns the anti-aliased image.
   RgbImage resolve();

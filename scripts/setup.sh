@@ -25,6 +25,9 @@ PACKAGES=(
   libpq-dev postgresql slurm-wlm munge
   # the dashboard's browser tests (headless Chromium driven by playwright-core)
   chromium
+  # the finite-element check (docs/fe-check.md): gmsh meshes, CalculiX solves;
+  # both run as programs, so no development packages are needed
+  gmsh calculix-ccx
 )
 # Node.js for the dashboard's npm packages (uPlot, playwright-core); a newer
 # Node.js already installed (e.g. from NodeSource) is kept.

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,10 @@ struct ServerConfig {
   Limits limits;
   Timeouts timeouts;
   ImageProvider image_provider;  // empty: the images endpoint answers 501
+  // Why jobs asking for the FE check ("fe_check": true) cannot run here, ""
+  // when they can (gmsh and CalculiX found). Empty: a build without the FE
+  // layer. Either way such jobs are refused with 501.
+  std::function<std::string()> fe_check_unavailable;
 };
 
 // Where the job directories are; whether other processes share the store.

@@ -108,6 +108,19 @@ std::variant<NewJob, Refusal> admit_job(const Services& services, const nlohmann
   const Limits& limits = services.config.limits;
   try {
     const nlohmann::json job = validate_job(raw);
+    // The FE check after the run needs gmsh and CalculiX here (or on the
+    // workers, which run the same build): refused now, not after the run.
+    if (job.at("scene").value("fe_check", false)) {
+      const std::string why = services.config.fe_check_unavailable
+                                  ? services.config.fe_check_unavailable()
+                                  : "FE unavailable: this service was built without the FE layer";
+      if (!why.empty()) {
+        return Refusal{http::status::not_implemented,
+                       problem::kFeUnavailable,
+                       "FE check unavailable",
+                       {{"/scene/fe_check", why}}};
+      }
+    }
     const double lower = particles_lower_bound(job);
     if (lower > double(limits.max_particles)) {
       const std::string buf = too_many_particles(lower, limits);

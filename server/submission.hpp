@@ -24,7 +24,8 @@ std::variant<std::optional<Idempotency>, StringResponse> idempotency_of(const Re
                                                                         const std::string& scope,
                                                                         const nlohmann::json& body);
 
-// Why a job is not taken: 400 invalid, 422 too large.
+// Why a job is not taken: 400 invalid, 422 too large, 501 a check this
+// service cannot run (fe_check without gmsh or CalculiX).
 struct Refusal {
   http::status status = http::status::bad_request;
   std::string type, title;

@@ -53,15 +53,27 @@ TEST(Fillet, CurvesLieOnTheOutlineFromTheSpaceCentreToTheFormCircle) {
 
 TEST(Fillet, ThirtyDegreePointIsTheOneOfTheIsoSection) {
   const geometry::PinionGeometry g = paper_pinion();
-  const ThirtyDegreePoints t30 = thirty_degree_points(g);
+  // The reference: the outline's own vertex where its slope passes 30
+  // degrees, on an outline sampled to a 0.01 nm chord error (segments of
+  // ~0.3 um; at the default 0.1 um they are ~30 um long, and the vertex
+  // sits up to half of one from the point).
+  geometry::PinionSpec fine = g.spec();
+  fine.chord_tolerance_m = 1e-11;
+  const ThirtyDegreePoints t30 = thirty_degree_points(geometry::PinionGeometry(fine));
   // Tooth 0 unplaced: generating frame turned by pi (tooth axis -y).
   const ToothFillets f = tooth_fillets(g, 0, {}, {1.0, 0.0}, 1e-5);
   for (const FilletCurve* c : {&f.tension, &f.compression}) {
     const Point p = c->points[c->i30] + c->f30 * (c->points[c->i30 + 1] - c->points[c->i30]);
     // Both 30-degree points have the same radius and the chord s_Fn.
-    EXPECT_NEAR(geometry::norm(p), geometry::norm(t30.right), 2e-6);
-    EXPECT_NEAR(2.0 * std::abs(p.x), t30.chord, 4e-6);
+    EXPECT_NEAR(geometry::norm(p), geometry::norm(t30.right), 0.5e-6);
+    EXPECT_NEAR(2.0 * std::abs(p.x), t30.chord, 1e-6);
   }
+  // The tangent follows the curve, not the outline's straight segments:
+  // the point moves by well under a segment when the sampling changes.
+  const ToothFillets coarse = tooth_fillets(g, 0, {}, {1.0, 0.0}, 2.5e-5);
+  const FilletCurve& c = coarse.tension;
+  const Point q = c.points[c.i30] + c.f30 * (c.points[c.i30 + 1] - c.points[c.i30]);
+  EXPECT_NEAR(geometry::norm(q), geometry::norm(t30.right), 0.5e-6);
 }
 
 TEST(Fillet, TensionSideIsUnderTheFlankTheForcePushes) {

@@ -9,6 +9,9 @@
 #ifdef GEARSPH_WITH_RESULTS
 #include "results/results_writer.hpp"
 #endif
+#ifdef GEARSPH_WITH_FE
+#include "fe/external_program.hpp"
+#endif
 #include "solver/job/job.hpp"
 #include "solver/run/execute.hpp"
 
@@ -84,6 +87,20 @@ int cmd_run(Args& args) {
                    i.message.c_str());
     }
     return 2;
+  }
+  // A job that asks for the FE check learns before its run that it cannot
+  // have it (the service answers 501).
+  if (job.job.at("scene").value("fe_check", false)) {
+#ifdef GEARSPH_WITH_FE
+    const std::string why = fe::fe_unavailable_reason();
+#else
+    const std::string why = "FE unavailable: this build has no FE layer (GEARSPH_FE)";
+#endif
+    if (!why.empty()) {
+      std::fprintf(stderr, "gearsph run: %s asks for the FE check (/scene/fe_check): %s\n",
+                   path.c_str(), why.c_str());
+      return 5;
+    }
   }
   std::filesystem::create_directories(*out);
   const Simulation& sim = job.scene.sim;

@@ -6,6 +6,9 @@
 
 #include "apps/gearsph/cli.hpp"
 #include "apps/gearsph/serve_images.hpp"
+#ifdef GEARSPH_WITH_FE
+#include "fe/external_program.hpp"
+#endif
 #include "server/server.hpp"
 
 namespace gearsph::cli {
@@ -107,6 +110,10 @@ int cmd_serve(Args& args) {
 
   // Images of results (empty, so 501, in a build without the renderer).
   c.image_provider = results_image_provider();
+#ifdef GEARSPH_WITH_FE
+  // Jobs asking for the FE check are taken only where gmsh and ccx are.
+  c.fe_check_unavailable = [] { return fe::fe_unavailable_reason(); };
+#endif
   if (!c.local_workers) c.workers = 0;
   server::Server s(c);
   const std::string runs =

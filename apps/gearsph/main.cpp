@@ -14,6 +14,9 @@
 #ifdef GEARSPH_WITH_RESULTS
 #include "results/register_outputs.hpp"
 #endif
+#ifdef GEARSPH_WITH_FE
+#include "fe/fe_check.hpp"
+#endif
 
 namespace {
 
@@ -39,6 +42,14 @@ usage:
       print the job schema (JSON Schema draft-07)
   gearsph geometry JOB.json --out DIR
       the scene's outlines and particles as SVG and CSV, without running it
+  gearsph fe JOB.json --out DIR [--fillet-sizes-mm 0.2,0.1] [--threads N] [--rim-depth-mm D] [--teeth 3|all] [--compare RUN_DIR] [--keep-model-files] [--no-images] [--timeout-s S] [--quiet]
+      finite-element check of a quasi-static rack_pinion job (gmsh, CalculiX): tooth 0
+      under the job's load at its contact_point, meshed at each fillet element size
+      (default: 1/12 and 1/24 of ISO's fillet radius, 0.2 and 0.1 mm for the paper's
+      pinion; the finest is the reference); held like the SPH hub unless --rim-depth-mm
+      or --teeth say otherwise; --compare takes the load from a finished SPH run and
+      writes fe_comparison.json; writes DIR/fe_summary.json, fe_fillet_curves.csv/.json
+      and PNG images; --keep-model-files keeps the .geo/.inp/.frd in DIR/fe_model
   gearsph render RUN_DIR|results.h5 --out FILE.png [--field von_mises] [--frame K] [--zoom x0,y0,x1,y1]
       a frame of a run as the service draws it (frame -1: the last); --frames all
       --out DIR writes every frame
@@ -52,7 +63,8 @@ usage:
       run jobs from a shared job store (docs/scale-out.md)
   gearsph help
 
-exit status: 0 success, 1 error, 2 invalid job or usage, 3 run diverged, 4 cancelled
+exit status: 0 success, 1 error, 2 invalid job or usage, 3 run diverged, 4 cancelled,
+  5 FE unavailable (gmsh or CalculiX missing, or a build without the FE layer)
 )";
 
 // The usage lines of one command (its `  gearsph CMD ...` lines and their
@@ -89,6 +101,9 @@ bool asks_for_help(int argc, char** argv) {
 namespace gearsph::cli {
 int cmd_study(Args& args);             // cmd_study.cpp
 int cmd_bench(int argc, char** argv);  // cmd_bench.cpp: `bench` and `bench pareto`
+#ifdef GEARSPH_WITH_FE
+int cmd_fe(Args& args);  // cmd_fe.cpp
+#endif
 }  // namespace gearsph::cli
 
 #ifdef GEARSPH_WITH_SERVICE
@@ -135,6 +150,10 @@ int main(int argc, char** argv) {
 #ifdef GEARSPH_WITH_RESULTS
   gearsph::results::register_outputs();
 #endif
+#ifdef GEARSPH_WITH_FE
+  // Runs of jobs with "fe_check" (run, serve, worker) add the FE check.
+  gearsph::fe::register_fe_check();
+#endif
   if (argc < 2 || !std::strcmp(argv[1], "help") || !std::strcmp(argv[1], "--help") ||
       !std::strcmp(argv[1], "-h")) {
     std::fputs(kUsage, argc < 2 ? stderr : stdout);
@@ -153,6 +172,14 @@ int main(int argc, char** argv) {
     if (cmd == "study") return gearsph::cli::cmd_study(args);
     if (cmd == "bench") return gearsph::cli::cmd_bench(argc, argv);
     if (cmd == "geometry") return gearsph::cli::cmd_geometry(args);
+#ifdef GEARSPH_WITH_FE
+    if (cmd == "fe") return gearsph::cli::cmd_fe(args);
+#else
+    if (cmd == "fe") {
+      std::fprintf(stderr, "gearsph fe: FE unavailable: this build has no FE layer (GEARSPH_FE)\n");
+      return 5;
+    }
+#endif
 #ifdef GEARSPH_WITH_SERVICE
     if (cmd == "serve") return gearsph::cli::cmd_serve(args);
 #endif

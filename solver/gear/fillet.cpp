@@ -41,6 +41,14 @@ Point at_arc(const std::vector<Point>& line, const std::vector<double>& cum, dou
   return line[k - 1] + f * (line[k] - line[k - 1]);
 }
 
+// Length of the polyline segment at arc length s.
+double segment_at(const std::vector<double>& cum, double s) {
+  const auto it = std::upper_bound(cum.begin(), cum.end(), std::clamp(s, 0.0, cum.back()));
+  const std::size_t k =
+      std::min<std::size_t>(std::max<std::ptrdiff_t>(it - cum.begin(), 1), cum.size() - 1);
+  return cum[k] - cum[k - 1];
+}
+
 // The fillet in the generating frame, right side, resampled every `step`.
 FilletCurve generating_curve(const geometry::PinionGeometry& g, double step) {
   const std::vector<Point> line = fillet_polyline(g);
@@ -52,13 +60,16 @@ FilletCurve generating_curve(const geometry::PinionGeometry& g, double step) {
   const std::size_t n =
       std::max<std::size_t>(3, static_cast<std::size_t>(std::ceil(length / step)) + 1);
   const double ds = length / static_cast<double>(n - 1);
-  // Tangents by a central difference over a short chord: the polyline is
-  // dense (chord error 0.1 um), so a tenth of a step is well resolved.
-  const double delta = 0.1 * ds;
+  // Tangents by a central difference over a chord that reaches past the
+  // polyline's vertices on either side: inside one of its segments the
+  // direction would be that segment's, a staircase in steps of about 0.6
+  // degrees on the fillet (segments of ~30 um at 0.1 um chord error), which
+  // moves ISO's 30-degree point by up to half a segment.
   FilletCurve c;
   for (std::size_t i = 0; i < n; ++i) {
     const double s = ds * static_cast<double>(i);
     const Point p = at_arc(line, cum, s);
+    const double delta = std::max(0.1 * ds, 1.5 * segment_at(cum, s));
     const Point d = at_arc(line, cum, s + delta) - at_arc(line, cum, s - delta);
     const Point t = (1.0 / geometry::norm(d)) * d;
     c.points.push_back(p);

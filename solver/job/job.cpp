@@ -110,6 +110,22 @@ MethodConfig read_method(const nlohmann::json& m) {
   return out;
 }
 
+// The FE check (fe/fe_check.hpp) compares static fillet stresses: it needs
+// a quasi-static run that carries a load. Refused here, before a run, so
+// that the CLI and the service answer alike.
+void check_fe_request(const nlohmann::json& job) {
+  if (!job.contains("scene") || !job["scene"].is_object()) return;
+  const nlohmann::json& s = job["scene"];
+  if (s.value("type", "") != "rack_pinion" || !s.value("fe_check", false)) return;
+  if (!s.value("quasi_static", false)) {
+    refuse("/scene/fe_check",
+           "the FE check compares static stresses: it needs \"quasi_static\": true");
+  }
+  if (!(s.contains("rack") && s["rack"].value("load_N", 0.0) > 0.0)) {
+    refuse("/scene/rack/load_N", "the FE check needs a load: give the rack load per gear");
+  }
+}
+
 Scene build_scene(const nlohmann::json& job, const Discretization& disc) {
   const nlohmann::json& s = job.at("scene");
   const std::string type = s.at("type").get<std::string>();
@@ -160,7 +176,9 @@ nlohmann::json validate_job(const nlohmann::json& job) {
       job["time"].contains("cfl")) {
     refuse("/time/cfl", "give either dt_s (a fixed step) or cfl, not both");
   }
-  return validator().apply_defaults(job);
+  nlohmann::json full = validator().apply_defaults(job);
+  check_fe_request(full);
+  return full;
 }
 
 int threads_for(std::size_t particles, int max_threads) {

@@ -18,11 +18,21 @@ std::vector<OutputFactory>& registry() {
   return r;
 }
 
+std::vector<SummaryAddition>& additions() {
+  static std::vector<SummaryAddition> a;
+  return a;
+}
+
 }  // namespace
 
 void register_output(OutputFactory factory) {
   std::lock_guard<std::mutex> lock(registry_mutex());
   registry().push_back(std::move(factory));
+}
+
+void register_summary_addition(SummaryAddition addition) {
+  std::lock_guard<std::mutex> lock(registry_mutex());
+  additions().push_back(std::move(addition));
 }
 
 void write_file_atomic(const std::filesystem::path& path, const std::string& content) {
@@ -64,6 +74,18 @@ Execution execute_prepared(PreparedJob& job, const std::filesystem::path& dir,
   for (auto& w : writers) observers.add(w.get());
 
   out.run = run_job(job, &observers);
+  std::vector<SummaryAddition> adds;
+  {
+    std::lock_guard<std::mutex> lock(registry_mutex());
+    adds = additions();
+  }
+  for (const SummaryAddition& add : adds) {
+    try {
+      add(job, out.run, dir, options, out.run.summary);
+    } catch (const std::exception& e) {
+      out.run.summary["warnings"].push_back(std::string("after the run: ") + e.what());
+    }
+  }
   write_file_atomic(dir / "history.csv", out.run.history.to_csv());
   out.files.push_back("history.csv");
   // The summary goes last: its presence means the run's files are complete.

@@ -29,6 +29,16 @@ struct ExecuteOptions {
   RunObserver* observer = nullptr;  // progress / cancellation from the caller
 };
 
+// Adds to a finished run's summary before summary.json is written, and may
+// write files of its own into the run's directory: work that follows a run
+// but needs what the solver must not depend on (the finite-element check of
+// fe/ runs gmsh and CalculiX). Registered by the layers that provide it;
+// an exception it throws is recorded in the summary's `warnings`.
+using SummaryAddition =
+    std::function<void(const PreparedJob&, const RunResult&, const std::filesystem::path& dir,
+                       const ExecuteOptions&, nlohmann::json& summary)>;
+void register_summary_addition(SummaryAddition addition);
+
 struct Execution {
   RunResult run;
   std::vector<std::string> files;  // written, relative to dir

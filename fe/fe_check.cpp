@@ -1,0 +1,422 @@
+#include "fe/fe_check.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <mutex>
+#include <numbers>
+#include <sstream>
+
+#include "fe/external_program.hpp"
+#include "solver/gear/gear_rating.hpp"
+#include "solver/job/job.hpp"
+#include "solver/run/execute.hpp"
+#ifdef GEARSPH_FE_WITH_RENDER
+#include "fe/fe_images.hpp"
+#endif
+
+namespace gearsph::fe {
+
+namespace {
+
+constexpr double kDeg = 180.0 / std::numbers::pi;
+
+std::string mm(double metres) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g mm", 1e3 * metres);
+  return text;
+}
+
+nlohmann::json xy(Point p) {
+  return nlohmann::json::array({p.x, p.y});
+}
+
+nlohmann::json mesh_json(const GearFeResult& r, double face_width_m) {
+  const gear::FilletStress& s = r.stress;
+  double vm_max = 0.0;
+  for (const NodalStress& n : r.solution.stress) vm_max = std::max(vm_max, n.von_mises());
+  const Point balance = r.reaction_N + r.load.applied_N;
+  return {{"fillet_size_m", r.sizes.fillet},
+          {"load_size_m", r.sizes.load},
+          {"max_size_m", r.sizes.max},
+          {"fillet_band_m", r.sizes.fillet_band},
+          {"load_band_m", r.sizes.load_band},
+          {"grow_to_m", r.sizes.grow_to},
+          {"nodes", r.mesh.nodes.size()},
+          {"elements", r.mesh.elements.size()},
+          {"fillet_tension_peak_Pa", s.tension.stress_Pa},
+          {"fillet_tension_peak_radius_m", s.tension.radius_m},
+          {"fillet_tension_peak_arc_m", s.tension.arc_m},
+          {"fillet_tension_peak_angle_deg", s.tension.angle_rad * kDeg},
+          {"fillet_compression_peak_Pa", s.compression.stress_Pa},
+          {"fillet_compression_peak_radius_m", s.compression.radius_m},
+          {"fillet_compression_at_iso30_Pa", s.compression.at_iso30_Pa},
+          {"fillet_stress_at_iso30_Pa", s.tension.at_iso30_Pa},
+          {"max_von_mises_Pa", vm_max},
+          {"applied_force_N", xy(r.load.applied_N)},
+          {"reaction_total_N", xy(r.reaction_N)},
+          // |reaction + load| / |load|: the solve's equilibrium, ~1e-6 (the
+          // results files carry six digits).
+          {"reaction_imbalance", geometry::norm(balance) / geometry::norm(r.load.applied_N)},
+          {"face_width_m", face_width_m},
+          {"curve_to_mesh_distance_m", r.curve_to_mesh_m},
+          {"mesh_s", r.mesh_s},
+          {"solve_s", r.solve_s}};
+}
+
+std::string curves_csv(const std::vector<GearFeResult>& meshes) {
+  std::ostringstream csv;
+  csv.precision(10);
+  csv << "fillet_size_m,arc_m,tension_radius_m,tension_sigma1_Pa,compression_radius_m,"
+         "compression_sigma3_Pa,tangent_angle_deg\n";
+  for (const GearFeResult& r : meshes) {
+    const gear::FilletCurve& t = r.fillets.tension;
+    const gear::FilletCurve& c = r.fillets.compression;
+    for (std::size_t i = 0; i < t.size() && i < c.size(); ++i) {
+      csv << r.sizes.fillet << ',' << t.arc[i] << ',' << t.radius[i] << ','
+          << r.stress.tension_curve[i] << ',' << c.radius[i] << ',' << r.stress.compression_curve[i]
+          << ',' << t.tangent_angle[i] * kDeg << '\n';
+    }
+  }
+  return csv.str();
+}
+
+nlohmann::json curves_json(const std::vector<GearFeResult>& meshes) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const GearFeResult& r : meshes) {
+    const gear::FilletCurve& t = r.fillets.tension;
+    nlohmann::json angle = nlohmann::json::array();
+    for (double a : t.tangent_angle) angle.push_back(a * kDeg);
+    const double arc30 = t.arc[t.i30] + t.f30 * (t.arc[t.i30 + 1] - t.arc[t.i30]);
+    list.push_back({{"fillet_size_m", r.sizes.fillet},
+                    {"arc_m", t.arc},
+                    {"tension_radius_m", t.radius},
+                    {"tension_sigma1_Pa", r.stress.tension_curve},
+                    {"compression_radius_m", r.fillets.compression.radius},
+                    {"compression_sigma3_Pa", r.stress.compression_curve},
+                    {"tangent_angle_deg", angle},
+                    {"iso30_arc_m", arc30}});
+  }
+  return {{"description",
+           "stress along tooth 0's fillets from the space centre (arc 0) to the form circle: "
+           "largest principal stress on the tension fillet, lowest on the compression fillet"},
+          {"meshes", list}};
+}
+
+}  // namespace
+
+const std::vector<std::string>& fillet_keys() {
+  static const std::vector<std::string> keys = {
+      "fillet_tension_peak_Pa", "fillet_tension_peak_radius_m", "fillet_compression_peak_Pa",
+      "fillet_stress_at_iso30_Pa"};
+  return keys;
+}
+
+namespace {
+
+// The job's model with what the options change: an SPH run's load, another
+// support, more teeth; and where its load comes from, in words.
+struct CheckCase {
+  GearFeJob job;
+  std::string load_source, radius_source;
+  bool whole = false;
+};
+
+CheckCase check_case(GearFeJob job, const FeCheckOptions& o,
+                     const geometry::PinionGeometry& pinion) {
+  CheckCase k{std::move(job), "the job's rack load per gear, F_n = load_N / cos(alpha)", "", false};
+  GearFeCase& c = k.job.model;
+  k.radius_source = "the job's contact_point (" + k.job.contact_point + ")";
+  if (o.normal_force_N) {
+    c.normal_force_N = *o.normal_force_N;
+    k.load_source = o.load_source.empty() ? "given" : o.load_source;
+  }
+  if (o.load_radius_m) {
+    c.load_radius_m = std::clamp(*o.load_radius_m, pinion.form_radius(), pinion.tip_radius());
+    k.radius_source = o.load_source.empty() ? "given" : o.load_source;
+  }
+  if (o.rim_depth_m) {
+    k.job.rim_depth_m = *o.rim_depth_m;
+    c.fixed_radius_m = pinion.root_radius() - k.job.rim_depth_m;
+  }
+  if (o.neighbours) c.neighbours = *o.neighbours;
+  c.whole_gear = o.whole_gear;
+  k.whole = c.whole_gear || 2 * c.neighbours + 1 >= pinion.teeth();
+  return k;
+}
+
+nlohmann::json model_json(const CheckCase& k, const geometry::PinionGeometry& pinion,
+                          const FeTools& tools, double step) {
+  const GearFeCase& c = k.job.model;
+  return {
+      {"frame", "gear frame of gear_profile.hpp: pinion centre at the origin, tooth 0 along -y"},
+      {"teeth",
+       k.whole ? nlohmann::json("all") : nlohmann::json::array({-c.neighbours, c.neighbours})},
+      {"held", k.whole ? "u = 0 on the bore r = fixed_radius_m"
+                       : "u = 0 on the inner arc r = fixed_radius_m (where the SPH hub ring "
+                         "begins); the radial cut sides are free"},
+      {"fixed_radius_m", c.fixed_radius_m},
+      {"rim_depth_m", k.job.rim_depth_m},
+      {"root_radius_m", pinion.root_radius()},
+      {"element", "CPE6: six-node plane-strain triangle (CalculiX), quadratic, unit thickness"},
+      {"material", {{"E_Pa", c.E_Pa}, {"nu", c.nu}}},
+      {"face_width_m", c.face_width_m},
+      {"fillet_stress",
+       "CalculiX's nodal stresses (extrapolated from the integration points, averaged between "
+       "elements), interpolated along the fillet's boundary edges by their quadratic shape "
+       "functions at the samples of gear/fillet.hpp's curves"},
+      {"fillet_sample_step_m", step},
+      {"mesher", "gmsh " + tools.gmsh.string()},
+      {"solver", "CalculiX " + tools.ccx.string()}};
+}
+
+nlohmann::json load_json(const CheckCase& k, const GearLoadPatch& load, double ft) {
+  const GearFeCase& c = k.job.model;
+  return {{"normal_force_N", c.normal_force_N},
+          {"tangential_force_N", ft},
+          {"source", k.load_source},
+          {"radius_source", k.radius_source},
+          {"contact_point", k.job.contact_point},
+          {"requested_radius_m", load.requested_radius_m},
+          {"load_radius_m", load.radius_m},
+          {"flank", c.flank_side < 0 ? "tooth 0's -x flank (clockwise pinion)"
+                                     : "tooth 0's +x flank (counter-clockwise pinion)"},
+          {"direction", xy(load.direction)},
+          {"centre_m", xy(load.centre)},
+          {"distribution",
+           "Hertzian pressure p0 sqrt(1 - (d/a)^2) over the flank, line contact of the "
+           "involute on the flat rack flank (Johnson 1985, 4.45), scaled to F_n exactly"},
+          {"hertz_half_width_m", load.half_width_m},
+          {"hertz_peak_pressure_Pa", load.peak_pressure_Pa},
+          {"involute_curvature_radius_m", load.curvature_radius_m}};
+}
+
+// Every mesh against the reference (the finest), and the last two as the
+// coarse-fine pair.
+void add_convergence(const nlohmann::json& meshes, nlohmann::json& s) {
+  const nlohmann::json& top = meshes.back();
+  nlohmann::json convergence;
+  nlohmann::json sizes = nlohmann::json::array();
+  for (const nlohmann::json& m : meshes) sizes.push_back(m.at("fillet_size_m"));
+  convergence["fillet_sizes_m"] = sizes;
+  for (const std::string& key : fillet_keys()) {
+    nlohmann::json values = nlohmann::json::array(), diffs = nlohmann::json::array();
+    const double ref_v = top.at(key).get<double>();
+    for (const nlohmann::json& m : meshes) {
+      values.push_back(m.at(key));
+      diffs.push_back((m.at(key).get<double>() - ref_v) / std::abs(ref_v));
+    }
+    convergence[key] = {{"values", values}, {"relative_to_reference", diffs}};
+  }
+  s["convergence"] = convergence;
+  if (meshes.size() < 2) return;
+  const nlohmann::json& coarse = meshes[meshes.size() - 2];
+  nlohmann::json diff;
+  for (const std::string& key : fillet_keys()) {
+    const double fine = top.at(key).get<double>();
+    diff[key] = {{"coarse", coarse.at(key)},
+                 {"fine", fine},
+                 {"relative_difference", (coarse.at(key).get<double>() - fine) / std::abs(fine)}};
+  }
+  s["coarse_fine_difference"] = diff;
+}
+
+}  // namespace
+
+nlohmann::json run_fe_check(const nlohmann::json& job, const std::filesystem::path& out_dir,
+                            const FeCheckOptions& o) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  auto log = [&o](const std::string& line) {
+    if (o.log) o.log(line);
+  };
+  GearFeJob read = read_gear_fe_job(job);
+  const geometry::PinionGeometry pinion(read.model.pinion);
+  const CheckCase k = check_case(std::move(read), o, pinion);
+  const GearFeCase& c = k.job.model;
+  const FeTools tools = find_fe_tools();
+
+  std::vector<double> sizes =
+      o.fillet_sizes_m.empty() ? default_fillet_sizes(pinion) : o.fillet_sizes_m;
+  std::sort(sizes.begin(), sizes.end(), std::greater<>());
+  if (sizes.empty() || !(sizes.back() > 0.0)) {
+    throw std::invalid_argument("fillet element sizes must be positive");
+  }
+  // Fillet samples at a quarter of the finest element: the quadratic
+  // variation along an edge is resolved, and every mesh is read at the
+  // same points.
+  const double step = 0.25 * sizes.back();
+  std::filesystem::create_directories(out_dir);
+  std::optional<WorkDir> temp;
+  std::filesystem::path work = out_dir / "fe_model";
+  if (o.keep_model_files) {
+    std::filesystem::create_directories(work);
+  } else {
+    temp.emplace("gearsph-fe-");
+    work = temp->path();
+  }
+  std::vector<GearFeResult> results;
+  for (double size : sizes) {
+    if (o.cancelled && o.cancelled()) throw FeFailed("the FE check was cancelled");
+    char name[48];
+    std::snprintf(name, sizeof name, "tooth0_%.4gmm", 1e3 * size);
+    log("meshing and solving with " + mm(size) + " elements at the fillets");
+    results.push_back(solve_gear_fe(c, gear_mesh_sizes(pinion, size), step, tools, work, name,
+                                    o.threads, o.timeout_s));
+    const GearFeResult& r = results.back();
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "  %zu nodes, %zu elements: tension fillet peak %.2f MPa, at ISO's 30-degree "
+                  "point %.2f MPa (gmsh %.1f s, ccx %.1f s)",
+                  r.mesh.nodes.size(), r.mesh.elements.size(), 1e-6 * r.stress.tension.stress_Pa,
+                  1e-6 * r.stress.tension.at_iso30_Pa, r.mesh_s, r.solve_s);
+    log(line);
+  }
+  const GearFeResult& ref = results.back();
+
+  // ISO 6336-3 method B at the FE load's radius: sigma_F0 = F_t / (b m) Y_F Y_S.
+  const gear::IsoToothForm iso = gear::iso_tooth_form(pinion, ref.load.radius_m);
+  const double ft = c.normal_force_N * std::cos(k.job.pressure_angle);
+  const double sigma_F0 = ft / (c.face_width_m * k.job.module_m) * iso.Y_F * iso.Y_S;
+
+  nlohmann::json s;
+  s["job"] = k.job.name;
+  s["model"] = model_json(k, pinion, tools, step);
+  s["load"] = load_json(k, ref.load, ft);
+  nlohmann::json meshes = nlohmann::json::array();
+  for (const GearFeResult& r : results) meshes.push_back(mesh_json(r, c.face_width_m));
+  s["meshes"] = meshes;
+  // The reference's numbers at the top, with the SPH static check's names.
+  const nlohmann::json& top = meshes.back();
+  s["reference_mesh"] = results.size() - 1;
+  s["reference_fillet_size_m"] = ref.sizes.fillet;
+  for (const std::string& key : fillet_keys()) s[key] = top.at(key);
+  for (const char* key : {"fillet_tension_peak_angle_deg", "nodes", "elements", "reaction_total_N",
+                          "applied_force_N"}) {
+    s[key] = top.at(key);
+  }
+  s["load_radius_m"] = ref.load.radius_m;
+  s["tooth0_force_N"] = c.normal_force_N;
+  add_convergence(meshes, s);
+  s["iso_6336_3"] = {
+      {"method", "ISO 6336-3:2006 method B, sigma_F0 = F_t / (b m_n) Y_F Y_S at the load radius"},
+      {"load_radius_m", ref.load.radius_m},
+      {"Y_F", iso.Y_F},
+      {"Y_S", iso.Y_S},
+      {"s_Fn_m", iso.s_Fn},
+      {"rho_F_m", iso.rho_F},
+      {"h_Fe_m", iso.h_Fe},
+      {"sigma_F0_Pa", sigma_F0},
+      {"fillet_tension_peak_over_sigma_F0", ref.stress.tension.stress_Pa / sigma_F0},
+      {"fillet_stress_at_iso30_over_sigma_F0", ref.stress.tension.at_iso30_Pa / sigma_F0}};
+
+  std::vector<std::string> files = {"fe_summary.json", "fe_fillet_curves.csv",
+                                    "fe_fillet_curves.json"};
+  write_file_atomic(out_dir / "fe_fillet_curves.csv", curves_csv(results));
+  write_file_atomic(out_dir / "fe_fillet_curves.json", curves_json(results).dump(1) + "\n");
+#ifdef GEARSPH_FE_WITH_RENDER
+  if (o.images) {
+    char title[160];
+    std::snprintf(title, sizeof title, "F_n %.0f N at r = %.2f mm", c.normal_force_N,
+                  1e3 * ref.load.radius_m);
+    for (const std::string& f : write_fe_images(results, out_dir, title)) files.push_back(f);
+  }
+#endif
+  s["files"] = files;
+  s["wall_s"] = std::chrono::duration<double>(Clock::now() - start).count();
+  write_file_atomic(out_dir / "fe_summary.json", s.dump(2) + "\n");
+  return s;
+}
+
+nlohmann::json fe_comparison(const nlohmann::json& sph_summary, const nlohmann::json& fe) {
+  const nlohmann::json* check = nullptr;
+  if (sph_summary.contains("analysis") && sph_summary["analysis"].contains("static_check")) {
+    check = &sph_summary["analysis"]["static_check"];
+  }
+  nlohmann::json block;
+  std::vector<std::string> missing;
+  for (const std::string& key : fillet_keys()) {
+    const double fe_v = fe.at(key).get<double>();
+    nlohmann::json entry = {{"sph", nullptr}, {"fe", fe_v}, {"error", nullptr}};
+    if (check && check->contains(key) && (*check)[key].is_number()) {
+      const double sph = (*check)[key].get<double>();
+      entry["sph"] = sph;
+      entry["error"] = (sph - fe_v) / std::abs(fe_v);
+    } else {
+      missing.push_back(key);
+    }
+    block[key] = entry;
+  }
+  if (missing.empty()) {
+    block["status"] = "compared";
+    block["message"] =
+        "error = (sph - fe) / |fe|, the FE solution at the finest fillet mesh as the reference";
+  } else {
+    std::string list;
+    for (const std::string& k : missing) list += (list.empty() ? "" : ", ") + k;
+    block["status"] = "sph_values_missing";
+    block["message"] = "the SPH static check (summary analysis.static_check) does not give " +
+                       list + "; only the FE values are shown";
+  }
+  block["fe_summary"] = "fe_summary.json";
+  block["fe_fillet_size_m"] = fe.at("reference_fillet_size_m");
+  block["load"] = {{"normal_force_N", fe.at("load").at("normal_force_N")},
+                   {"load_radius_m", fe.at("load").at("load_radius_m")},
+                   {"source", fe.at("load").at("source")}};
+  block["iso_sigma_F0_Pa"] = fe.at("iso_6336_3").at("sigma_F0_Pa");
+  block["coarse_fine_difference"] = fe.value("coarse_fine_difference", nlohmann::json());
+  return block;
+}
+
+namespace {
+
+void add_fe_comparison(const PreparedJob& job, const RunResult& run,
+                       const std::filesystem::path& dir, const ExecuteOptions& eo,
+                       nlohmann::json& summary) {
+  const nlohmann::json& scene = job.job.at("scene");
+  if (scene.value("type", "") != "rack_pinion" || !scene.value("fe_check", false)) return;
+  if (run.status != "completed") {
+    summary["fe_comparison"] = {{"status", "not_run"},
+                                {"message", "the SPH run did not complete (" + run.status + ")"}};
+    return;
+  }
+  FeCheckOptions o;
+  o.threads = std::max(1, job.scene.sim.threads);
+  if (eo.observer) o.cancelled = [obs = eo.observer] { return obs->cancelled(); };
+  // The SPH run's own load on tooth 0, so that both solve the same problem.
+  if (summary.contains("analysis") && summary["analysis"].contains("static_check")) {
+    const nlohmann::json& sc = summary["analysis"]["static_check"];
+    if (sc.contains("tooth0_force_N") && sc["tooth0_force_N"].is_number() &&
+        sc["tooth0_force_N"].get<double>() > 0.0) {
+      o.normal_force_N = sc["tooth0_force_N"].get<double>();
+    }
+    if (sc.contains("load_radius_m") && sc["load_radius_m"].is_number() &&
+        sc["load_radius_m"].get<double>() > 0.0) {
+      o.load_radius_m = sc["load_radius_m"].get<double>();
+    }
+    o.load_source =
+        "the SPH run's tooth-0 normal force and load radius (summary "
+        "analysis.static_check)";
+  }
+  try {
+    summary["fe_comparison"] = fe_comparison(summary, run_fe_check(job.job, dir, o));
+  } catch (const FeUnavailable& e) {
+    summary["fe_comparison"] = {{"status", "unavailable"}, {"message", e.what()}};
+  } catch (const InvalidJob& e) {
+    summary["fe_comparison"] = {{"status", "failed"}, {"message", e.what()}};
+  } catch (const std::exception& e) {
+    summary["fe_comparison"] = {{"status", "failed"},
+                                {"message", std::string("the FE check failed: ") + e.what()}};
+  }
+}
+
+}  // namespace
+
+void register_fe_check() {
+  static std::once_flag once;
+  std::call_once(once, [] { register_summary_addition(add_fe_comparison); });
+}
+
+}  // namespace gearsph::fe

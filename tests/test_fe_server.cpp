@@ -1,0 +1,73 @@
+// The FE check in the job service: a job that asks for it is refused with
+// 501 where gmsh or CalculiX is missing, with 400 where it does not apply,
+// and run (its fe_comparison in the summary, its files beside the run's)
+// where the tools are.
+#include <cstdlib>
+
+#include "fe/external_program.hpp"
+#include "tests/test_server_support.hpp"
+
+namespace gearsph::server::testing {
+namespace {
+
+json static_gear_job(double end_s) {
+  return {{"name", "fe-check-service"},
+          {"scene",
+           {{"type", "rack_pinion"},
+            {"quasi_static", true},
+            {"fe_check", true},
+            {"pinion", {{"omega_rad_s", 0}}},
+            {"rack", {{"velocity_m_s", 0}, {"load_N", 1000}}}}},
+          {"time", {{"end_s", end_s}}}};
+}
+
+TEST(ServerFe, JobsAskingForTheCheckWithoutTheToolsAnswer501) {
+  // The server inherits this environment: ccx is "missing" for it.
+  ::setenv("GEARSPH_CCX", "/nonexistent/ccx", 1);
+  ServerProcess server({"--threads-per-job", "1"});
+  ::unsetenv("GEARSPH_CCX");
+  auto c = server.client();
+  const ClientResponse r = c.post_json("/jobs", static_gear_job(1e-4).dump());
+  ASSERT_EQ(r.status, 501u) << r.body;
+  EXPECT_EQ(r.header("Content-Type"), "application/problem+json");
+  const json p = r.json();
+  EXPECT_EQ(p.at("type"), "urn:gearsph:problem:fe-unavailable");
+  EXPECT_EQ(p.at("errors").at(0).at("pointer"), "/scene/fe_check");
+  EXPECT_NE(p.at("detail").get<std::string>().find("FE unavailable"), std::string::npos);
+  EXPECT_NE(p.at("detail").get<std::string>().find("ccx"), std::string::npos);
+  // Not applicable (a dynamic run) is the job's fault: 400 naming the field.
+  json dynamic = static_gear_job(1e-4);
+  dynamic["scene"]["quasi_static"] = false;
+  const ClientResponse d = c.post_json("/jobs", dynamic.dump());
+  ASSERT_EQ(d.status, 400u) << d.body;
+  EXPECT_EQ(d.json().at("errors").at(0).at("pointer"), "/scene/fe_check");
+  // Jobs without the check are taken as before.
+  EXPECT_EQ(c.post_json("/jobs", tiny_job().dump()).status, 201u);
+}
+
+TEST(ServerFe, TheWorkerRunsTheCheckAfterTheRun) {
+  if (const std::string why = fe::fe_unavailable_reason(); !why.empty()) GTEST_SKIP() << why;
+  ServerProcess server({"--threads-per-job", "1"});
+  auto c = server.client();
+  const std::string id = submit(c, static_gear_job(2e-4));  // a short relaxation will do
+  ASSERT_FALSE(id.empty());
+  const json status = wait_final(c, id, std::chrono::seconds(300));
+  ASSERT_EQ(status.at("status"), "successful") << status.dump();
+  const ClientResponse res = c.get("/jobs/" + id + "/results");
+  ASSERT_EQ(res.status, 200u);
+  const json results = res.json();
+  ASSERT_TRUE(results.at("summary").contains("fe_comparison")) << results.dump();
+  const json& block = results.at("summary").at("fe_comparison");
+  EXPECT_TRUE(block.at("status") == "compared" || block.at("status") == "sph_values_missing")
+      << block.dump();
+  const double fe = block.at("fillet_tension_peak_Pa").at("fe").get<double>();
+  EXPECT_TRUE(fe > 0.0 && fe < 1e10) << fe;
+  std::set<std::string> names;
+  for (const json& f : results.at("files")) names.insert(f.at("name").get<std::string>());
+  for (const char* n : {"fe_summary.json", "fe_fillet_curves.csv", "fe_fillet_curves.json"}) {
+    EXPECT_TRUE(names.count(n)) << n;
+  }
+}
+
+}  // namespace
+}  // namespace gearsph::server::testing
