@@ -96,6 +96,10 @@ void HttpSession::on_header(beast::error_code ec) {
                                      " bytes",
                                  ""));
   }
+  if (ec == http::error::bad_version) {
+    return refuse(problem::plain(http::status::http_version_not_supported,
+                                 "this server speaks HTTP/1.1 (and HTTP/1.0)", ""));
+  }
   if (ec) {
     return refuse(problem::plain(http::status::bad_request,
                                  "the request is not valid HTTP/1.1: " + ec.message(), ""));
@@ -163,11 +167,13 @@ void HttpSession::dispatch() {
 }
 
 void HttpSession::send(std::shared_ptr<Request> req, Response res) {
-  const bool keep_alive = req->msg.keep_alive() && !services_.stopping;
+  // An HTTP/1.0 client gets one answer per connection.
+  const bool keep_alive = req->msg.version() >= 11 && req->msg.keep_alive() && !services_.stopping;
   std::visit(
       [&](auto& m) {
         using M = std::decay_t<decltype(m)>;
         if constexpr (std::is_same_v<M, EventStream>) {
+          chunked_ = req->msg.version() >= 11;
           start_events(std::move(m));
         } else {
           m.keep_alive(keep_alive);
@@ -266,7 +272,8 @@ void HttpSession::start_events(EventStream es) {
 
   auto head = std::make_shared<http::response<http::empty_body>>(std::move(es.head));
   head->keep_alive(false);
-  head->chunked(true);
+  // HTTP/1.0 has no chunks: the stream is the body, ended by closing.
+  head->chunked(chunked_);
   auto sr = std::make_shared<http::response_serializer<http::empty_body>>(*head);
   stream_.expires_after(services_.config.timeouts.write);
   // The hub may post pump() while the header is on its way: it must wait,
@@ -325,12 +332,16 @@ void HttpSession::pump() {
 void HttpSession::write_events(std::string text, bool last) {
   writing_ = true;
   chunk_.clear();
-  if (!text.empty()) {
-    char size[20];
-    std::snprintf(size, sizeof size, "%zx\r\n", text.size());
-    chunk_ = size + text + "\r\n";
+  if (!chunked_) {
+    chunk_ = std::move(text);
+  } else {
+    if (!text.empty()) {
+      char size[20];
+      std::snprintf(size, sizeof size, "%zx\r\n", text.size());
+      chunk_ = size + text + "\r\n";
+    }
+    if (last) chunk_ += "0\r\n\r\n";
   }
-  if (last) chunk_ += "0\r\n\r\n";
   stream_.expires_after(services_.config.timeouts.write);
   net::async_write(stream_, net::buffer(chunk_),
                    [self = shared_from_this(), last](beast::error_code ec, std::size_t) {

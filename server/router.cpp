@@ -1,6 +1,10 @@
 #include "server/router.hpp"
 
+#include <algorithm>
+#include <charconv>
 #include <cstdio>
+
+#include <boost/asio/ip/address.hpp>
 
 #include "server/problem.hpp"
 #include "server/routes.hpp"
@@ -47,6 +51,44 @@ bool token_matches(std::string_view presented, std::string_view expected) {
     diff |= static_cast<unsigned char>(p ^ expected[i]);
   }
   return diff == 0;
+}
+
+std::optional<HostName> parse_host(std::string_view value) {
+  HostName out;
+  std::string_view port;
+  if (!value.empty() && value.front() == '[') {  // [IPv6]:port
+    const auto close = value.find(']');
+    if (close == std::string_view::npos) return std::nullopt;
+    out.host = std::string(value.substr(0, close + 1));
+    const std::string_view rest = value.substr(close + 1);
+    if (!rest.empty()) {
+      if (rest.front() != ':') return std::nullopt;
+      port = rest.substr(1);
+      if (port.empty()) return std::nullopt;
+    }
+  } else {
+    const auto colon = value.find(':');
+    out.host = std::string(value.substr(0, colon));
+    if (colon != std::string_view::npos) {
+      port = value.substr(colon + 1);
+      if (port.empty()) return std::nullopt;
+    }
+  }
+  if (out.host.empty()) return std::nullopt;
+  for (char& c : out.host) {
+    const auto u = static_cast<unsigned char>(c);
+    const bool ok = std::isalnum(u) || c == '-' || c == '.' || c == '_' || c == ':' || c == '[' ||
+                    c == ']' || c == '%' || c == '~';
+    if (!ok) return std::nullopt;
+    c = static_cast<char>(std::tolower(u));
+  }
+  if (!port.empty()) {
+    unsigned n = 0;
+    const auto [end, ec] = std::from_chars(port.data(), port.data() + port.size(), n);
+    if (ec != std::errc() || end != port.data() + port.size() || n > 65535) return std::nullopt;
+    out.port = n;
+  }
+  return out;
 }
 
 namespace {
@@ -117,6 +159,59 @@ std::string presented_token(const http::request_header<>& header) {
   return {};
 }
 
+// RFC 9112 sections 6.1 and 6.3: chunked is the one transfer coding this
+// server reads, and it must come last; anything else would be read as
+// something it is not. The status and a sentence, or nothing if fine.
+std::optional<std::pair<http::status, std::string>> framing_problem(
+    const http::request_header<>& header) {
+  if (!header.count(http::field::transfer_encoding)) return std::nullopt;
+  if (header.version() < 11) {
+    return std::make_pair(http::status::bad_request,
+                          std::string("an HTTP/1.0 request cannot use Transfer-Encoding"));
+  }
+  if (header.count(http::field::content_length)) {
+    return std::make_pair(
+        http::status::bad_request,
+        std::string("a request cannot have both Transfer-Encoding and Content-Length"));
+  }
+  std::vector<std::string> codings;
+  for (const auto& field : header) {
+    if (field.name() != http::field::transfer_encoding) continue;
+    const std::string_view value = field.value();
+    std::size_t start = 0;
+    while (start <= value.size()) {
+      const auto comma = value.find(',', start);
+      std::string_view item = value.substr(
+          start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+      item = item.substr(0, item.find(';'));  // parameters
+      while (!item.empty() && (item.front() == ' ' || item.front() == '\t')) item.remove_prefix(1);
+      while (!item.empty() && (item.back() == ' ' || item.back() == '\t')) item.remove_suffix(1);
+      if (!item.empty()) {
+        std::string coding(item);
+        for (char& c : coding) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        codings.push_back(std::move(coding));
+      }
+      if (comma == std::string_view::npos) break;
+      start = comma + 1;
+    }
+  }
+  if (codings.empty() || codings.back() != "chunked") {
+    return std::make_pair(http::status::bad_request,
+                          std::string("Transfer-Encoding must end with chunked"));
+  }
+  for (std::size_t i = 0; i + 1 < codings.size(); ++i) {
+    if (codings[i] == "chunked") {
+      return std::make_pair(http::status::bad_request,
+                            std::string("Transfer-Encoding names chunked more than once"));
+    }
+    return std::make_pair(http::status::not_implemented,
+                          "the transfer coding \"" + codings[i] +
+                              "\" is not supported; send the body as it is, with "
+                              "Content-Length or chunked");
+  }
+  return std::nullopt;
+}
+
 bool is_preflight(const http::request_header<>& h) {
   return h.method() == http::verb::options && h.count(http::field::origin) &&
          h.count(http::field::access_control_request_method);
@@ -130,16 +225,73 @@ std::optional<Response> Router::screen(const http::request_header<>& header) con
   const ServerConfig& config = services_.config;
   Request req;
   req.path = std::string(header.target().substr(0, header.target().find('?')));
+  req.msg.base() = header;
+  auto refuse = [&](http::status status, const std::string& detail) -> Response {
+    Response res = problem::plain(status, detail, req.path);
+    decorate(req, res);
+    return res;
+  };
+  if (header.version() != 10 && header.version() != 11) {
+    return refuse(http::status::http_version_not_supported,
+                  "this server speaks HTTP/1.1 (and HTTP/1.0)");
+  }
+  // RFC 9112 section 3.2: exactly one Host in HTTP/1.1. Checked against
+  // the names this server answers to, so that a page of another site whose
+  // name was made to point here (DNS rebinding) gets nothing.
+  const auto hosts = header.count(http::field::host);
+  if (hosts > 1) {
+    return refuse(http::status::bad_request,
+                  "the request has " + std::to_string(hosts) + " Host headers; send one");
+  }
+  if (hosts == 0 && header.version() == 11) {
+    return refuse(http::status::bad_request, "an HTTP/1.1 request needs a Host header");
+  }
+  if (hosts == 1) {
+    const std::string_view host = header[http::field::host];
+    const auto parsed = parse_host(host);
+    if (!parsed) {
+      return refuse(http::status::bad_request,
+                    "the Host header \"" + std::string(host) + "\" is not host[:port]");
+    }
+    if (!host_allowed(*parsed)) {
+      return refuse(http::status::misdirected_request,
+                    "this server does not answer to the name \"" + std::string(host) +
+                        "\"; to allow it, start the server with --allowed-host " + parsed->host);
+    }
+  }
+  if (auto problem = framing_problem(header)) return refuse(problem->first, problem->second);
   if (!config.token.empty() && !is_preflight(header) &&
       !token_matches(presented_token(header), config.token)) {
     Response res = problem::plain(http::status::unauthorized,
                                   "this server needs \"Authorization: Bearer <token>\"", req.path);
     head_of(res).set(http::field::www_authenticate, "Bearer realm=\"gearsph\"");
-    req.msg.base() = header;
     decorate(req, res);
     return res;
   }
   return std::nullopt;
+}
+
+bool Router::host_allowed(const HostName& h) const {
+  const unsigned short port = services_.port;
+  const unsigned asked_port = h.port.value_or(80);
+  std::vector<std::string> names = {"localhost", "127.0.0.1", "[::1]"};
+  // The bound address, unless it stands for every interface.
+  boost::system::error_code ec;
+  const auto bound = boost::asio::ip::make_address(services_.config.bind, ec);
+  if (!ec && !bound.is_unspecified()) {
+    names.push_back(bound.is_v6() ? "[" + bound.to_string() + "]" : bound.to_string());
+  }
+  for (const std::string& n : names) {
+    if (h.host == n && asked_port == port) return true;
+  }
+  for (const std::string& entry : services_.config.allowed_hosts) {
+    if (entry == "*") return true;
+    const auto allowed = parse_host(entry);
+    if (allowed && allowed->host == h.host && (!allowed->port || *allowed->port == asked_port)) {
+      return true;
+    }
+  }
+  return false;
 }
 
 Router::Match Router::match(Request& req) const {
@@ -150,9 +302,19 @@ Router::Match Router::match(Request& req) const {
     return m;
   }
   for (const std::string& s : req.segments) {
-    if (s == "." || s == ".." || s.find('\0') != std::string::npos) {
+    if (s == "." || s == "..") {
       m.answer = problem::plain(http::status::bad_request,
                                 "path segments '.' and '..' are not allowed", req.path);
+      return m;
+    }
+    const bool control = std::any_of(s.begin(), s.end(), [](char c) {
+      return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+    });
+    if (control) {
+      m.answer = problem::plain(http::status::bad_request,
+                                "the path holds a control character (such as %00); paths are "
+                                "printable text",
+                                req.path);
       return m;
     }
   }

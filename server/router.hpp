@@ -3,6 +3,7 @@
 // handler); applies what every request shares: the bearer token, CORS,
 // 404 / 405 answers, HEAD, caching headers, the dashboard's static files.
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -12,6 +13,14 @@
 namespace gearsph::server {
 
 using Handler = Response (*)(Services&, Request&);
+
+// A Host header's name (lower case; IPv6 in brackets) and port, if given;
+// nullopt if it is not host[:port].
+struct HostName {
+  std::string host;
+  std::optional<unsigned> port;
+};
+std::optional<HostName> parse_host(std::string_view value);
 
 struct Route {
   http::verb method;
@@ -25,8 +34,10 @@ class Router {
   explicit Router(Services& services);
 
   // Decides from the header alone whether to refuse before the body is
-  // read: 401 without a valid token. (A declared body over the limit is
-  // refused by the session's parser: 413.)
+  // read: 505 for HTTP other than 1.x, 400 without one Host (HTTP/1.1),
+  // 421 for a Host this server does not answer to (--allowed-host), 400 /
+  // 501 for transfer codings it cannot read, 401 without a valid token. (A
+  // declared body over the limit is refused by the session's parser: 413.)
   std::optional<Response> screen(const http::request_header<>& header) const;
 
   struct Match {
@@ -44,6 +55,7 @@ class Router {
 
  private:
   std::optional<Response> cors_preflight(const Request& req) const;
+  bool host_allowed(const HostName& h) const;
   void decorate(const Request& req, Response& res) const;
 
   Services& services_;

@@ -105,6 +105,7 @@ Server::Server(ServerConfig config)
     throw std::runtime_error("cannot listen on " + config_.bind + ":" +
                              std::to_string(config_.port) + ": " + e.code().message());
   }
+  services_->port = listener_->port();
 }
 
 Server::~Server() {

@@ -28,7 +28,8 @@ struct Services {
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
   std::atomic<int> connections{0};
   std::atomic<std::int64_t> requests{0};
-  std::atomic<bool> stopping{false};  // shutting down: no more keep-alive
+  std::atomic<bool> stopping{false};    // shutting down: no more keep-alive
+  std::atomic<unsigned short> port{0};  // the port listened on (known once bound)
 
   std::filesystem::path job_dir(const std::string& id) const { return jobs_dir / id; }
   nlohmann::json status_of(const JobRecord& job) const {

@@ -68,5 +68,124 @@ TEST_F(ServerHardening, NumbersOutOfRangeAre400WithThePointer) {
   EXPECT_EQ(c.get("/health").status, 200u);
 }
 
+// The status line of a raw exchange.
+std::string status_line(const std::string& answer) {
+  return answer.substr(0, answer.find("\r\n"));
+}
+
+std::string raw(const ServerProcess& server, const std::string& bytes) {
+  return raw_exchange(server.host(), server.port(), bytes, std::chrono::seconds(10));
+}
+
+// 6. DNS rebinding: a page of another site whose name was made to point at
+// 127.0.0.1 sends its own name as Host. Only the server's names are answered.
+TEST(ServerHosts, OneHostHeaderNamingThisServer) {
+  ServerProcess server(
+      {"--allowed-host", "gears.example", "--allowed-host", "pinned.example:8443"});
+  const std::string port = server.port();
+  // RFC 9112 section 3.2: no Host, or two, in HTTP/1.1: 400.
+  EXPECT_EQ(status_line(raw(server, "GET /health HTTP/1.1\r\nConnection: close\r\n\r\n")),
+            "HTTP/1.1 400 Bad Request");
+  EXPECT_EQ(
+      status_line(raw(server, "GET /health HTTP/1.1\r\nHost: 127.0.0.1:" + port +
+                                  "\r\nHost: 127.0.0.1:" + port + "\r\nConnection: close\r\n\r\n")),
+      "HTTP/1.1 400 Bad Request");
+  EXPECT_EQ(status_line(raw(server, "GET /health HTTP/1.1\r\nHost: a b\r\n\r\n")),
+            "HTTP/1.1 400 Bad Request");
+  auto c = server.client();
+  // Another name: 421, and no job is taken.
+  const ClientResponse rebound =
+      c.post_json("/jobs", tiny_job().dump(), {{"Host", "rebind.attacker.example:" + port}});
+  EXPECT_EQ(rebound.status, 421u) << rebound.body;
+  EXPECT_EQ(rebound.header("Content-Type"), "application/problem+json");
+  EXPECT_NE(rebound.json().at("detail").get<std::string>().find("--allowed-host"),
+            std::string::npos);
+  EXPECT_EQ(c.get("/health", {{"Host", "rebind.attacker.example"}}).status, 421u);
+  EXPECT_EQ(c.get("/", {{"Host", "rebind.attacker.example:" + port}}).status, 421u);
+  EXPECT_EQ(c.get("/jobs").json().at("numberMatched"), 0);
+  // The loopback names with this server's port, in any case.
+  for (const std::string name : {"localhost", "127.0.0.1", "[::1]", "LocalHost"}) {
+    EXPECT_EQ(c.get("/health", {{"Host", name + ":" + port}}).status, 200u) << name;
+  }
+  EXPECT_EQ(c.get("/health", {{"Host", "localhost:1"}}).status, 421u);  // another port
+  // Names given with --allowed-host: any port, or the one given.
+  EXPECT_EQ(c.get("/health", {{"Host", "gears.example"}}).status, 200u);
+  EXPECT_EQ(c.get("/health", {{"Host", "Gears.Example:1234"}}).status, 200u);
+  EXPECT_EQ(c.get("/health", {{"Host", "pinned.example:8443"}}).status, 200u);
+  EXPECT_EQ(c.get("/health", {{"Host", "pinned.example:8080"}}).status, 421u);
+  // HTTP/1.0 needs no Host (browsers always send one).
+  EXPECT_EQ(status_line(raw(server, "GET /health HTTP/1.0\r\n\r\n")).substr(9, 3), "200");
+}
+
+TEST(ServerHosts, AnyHostWithAStar) {
+  ServerProcess server({"--allowed-host", "*"});
+  auto c = server.client();
+  EXPECT_EQ(c.get("/health", {{"Host", "behind.proxy.example"}}).status, 200u);
+}
+
+// 8. RFC 9112 section 6.1: a transfer coding the server does not know is
+// 501, not read as if it were absent.
+TEST_F(ServerHardening, UnknownTransferCodingsAre501) {
+  auto c = server_->client();
+  const auto before = c.get("/jobs").json().at("numberMatched").get<int>();
+  const std::string host = "Host: 127.0.0.1:" + server_->port() + "\r\n";
+  const std::string head = "POST /jobs HTTP/1.1\r\n" + host + "Content-Type: application/json\r\n";
+  const std::string chunks = "\r\n\r\n2\r\n{}\r\n0\r\n\r\n";
+  EXPECT_EQ(status_line(raw(*server_, head + "Transfer-Encoding: gzip, chunked" + chunks)),
+            "HTTP/1.1 501 Not Implemented");
+  EXPECT_EQ(status_line(raw(*server_, head +
+                                          "Transfer-Encoding: gzip\r\nTransfer-Encoding: "
+                                          "chunked" +
+                                          chunks)),
+            "HTTP/1.1 501 Not Implemented");
+  // chunked not last, twice, with Content-Length, in HTTP/1.0: the length is unknown, 400.
+  EXPECT_EQ(status_line(raw(*server_, head + "Transfer-Encoding: chunked, gzip" + chunks)),
+            "HTTP/1.1 400 Bad Request");
+  EXPECT_EQ(status_line(raw(*server_, head + "Transfer-Encoding: chunked, chunked" + chunks)),
+            "HTTP/1.1 400 Bad Request");
+  EXPECT_EQ(
+      status_line(raw(*server_, head + "Content-Length: 2\r\nTransfer-Encoding: chunked" + chunks)),
+      "HTTP/1.1 400 Bad Request");
+  EXPECT_EQ(status_line(raw(*server_,
+                            "POST /jobs HTTP/1.0\r\nContent-Type: "
+                            "application/json\r\nTransfer-Encoding: chunked" +
+                                chunks)),
+            "HTTP/1.1 400 Bad Request");
+  EXPECT_EQ(c.get("/jobs").json().at("numberMatched").get<int>(), before);
+  // chunked alone is read (the body is "{}", the default job's preview).
+  const std::string preview = raw(*server_, "POST /preview HTTP/1.1\r\n" + host +
+                                                "Content-Type: application/json\r\n"
+                                                "Connection: close\r\nTransfer-Encoding: Chunked" +
+                                                chunks);
+  EXPECT_EQ(status_line(preview), "HTTP/1.1 200 OK");
+}
+
+// 11. HTTP/1.0 is answered (one request per connection); other versions are
+// not; a NUL in a path is named as such.
+TEST_F(ServerHardening, HttpVersionsAndControlCharactersInPaths) {
+  auto c = server_->client();
+  const std::string id = submit(c, tiny_job());
+  ASSERT_EQ(wait_final(c, id).at("status"), "successful");
+  const std::string health = raw(*server_, "GET /health HTTP/1.0\r\n\r\n");
+  EXPECT_EQ(status_line(health), "HTTP/1.1 200 OK");
+  EXPECT_NE(health.find("Connection: close"), std::string::npos) << health.substr(0, 300);
+  // An event stream to an HTTP/1.0 client is the body itself: no chunks.
+  const std::string stream = raw(*server_, "GET /jobs/" + id + "/events HTTP/1.0\r\n\r\n");
+  EXPECT_EQ(status_line(stream), "HTTP/1.1 200 OK");
+  const std::string body = stream.substr(stream.find("\r\n\r\n") + 4);
+  EXPECT_EQ(body.rfind("retry: 3000\n\n", 0), 0u) << body.substr(0, 200);
+  EXPECT_NE(body.find("event: status"), std::string::npos);
+  EXPECT_EQ(stream.find("Transfer-Encoding"), std::string::npos);
+  EXPECT_EQ(status_line(raw(*server_, "GET /health HTTP/2.0\r\nHost: 127.0.0.1:" + server_->port() +
+                                          "\r\n\r\n")),
+            "HTTP/1.1 505 HTTP Version Not Supported");
+  const ClientResponse nul = c.get("/health%00");
+  EXPECT_EQ(nul.status, 400u);
+  const std::string detail = nul.json().at("detail");
+  EXPECT_NE(detail.find("control character"), std::string::npos) << detail;
+  EXPECT_EQ(detail.find("'.'"), std::string::npos) << detail;
+  EXPECT_EQ(c.get("/jobs/" + id + "/files/job.json%0a").status, 400u);
+}
+
 }  // namespace
 }  // namespace gearsph::server::testing

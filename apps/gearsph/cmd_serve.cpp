@@ -6,6 +6,7 @@
 
 #include "apps/gearsph/cli.hpp"
 #include "apps/gearsph/serve_images.hpp"
+#include "server/router.hpp"
 #include "server/server.hpp"
 
 namespace gearsph::cli {
@@ -68,6 +69,13 @@ int cmd_serve(Args& args) {
   }
   if (auto v = args.option("token-file")) c.token = server::read_token_file(*v);
   if (auto v = args.option("cors-origin")) c.cors_origin = *v;
+  while (auto v = args.option("allowed-host")) {
+    if (*v != "*" && !server::parse_host(*v)) {
+      throw std::invalid_argument("--allowed-host takes a host name, name:port or *, not '" + *v +
+                                  "'");
+    }
+    c.allowed_hosts.push_back(*v);
+  }
   if (auto v = args.option("web")) c.web_root = *v;
   c.max_attempts = args.integer("max-attempts", c.max_attempts);
   if (c.max_attempts < 1) throw std::invalid_argument("--max-attempts is 1 or more");
