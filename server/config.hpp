@@ -58,6 +58,7 @@ struct ServerConfig {
   int max_attempts = 3;            // runs interrupted by a crash this often are failed
   int io_threads = 2;              // threads of the io_context (network only)
   int handler_threads = 2;  // threads for slow handlers (job preparation, rendering, deletion)
+  int store_threads = 2;    // threads for handlers that read the job store or a job's files
   std::chrono::milliseconds progress_interval{250};  // at most 4 progress events/s per job
   std::chrono::milliseconds flush_interval{1000};    // progress batches to the store
   std::chrono::milliseconds shutdown_grace{3000};    // for in-flight responses on SIGTERM

@@ -24,11 +24,11 @@ std::string format_event(const Event& e) {
 
 }  // namespace
 
-HttpSession::HttpSession(tcp::socket&& socket, const Router& router, net::thread_pool& handler_pool)
+HttpSession::HttpSession(tcp::socket&& socket, const Router& router, HandlerPools pools)
     : stream_(std::move(socket)),
       router_(router),
       services_(router.services()),
-      handler_pool_(handler_pool),
+      pools_(pools),
       keepalive_(stream_.get_executor()) {
   ++services_.connections;
 }
@@ -153,14 +153,16 @@ void HttpSession::dispatch() {
   auto req = std::make_shared<Request>();
   req->msg = parser_->release();
   Router::Match match = router_.match(*req);
-  if (!match.slow()) {
+  const Lane lane = match.lane();
+  if (lane == Lane::io) {
     send(req, router_.respond(*req, std::move(match)));
     return;
   }
-  // Handlers that may block run on the handler pool; the answer comes back
-  // to this connection's strand.
-  net::post(handler_pool_, [self = shared_from_this(), ex = stream_.get_executor(), req,
-                            m = std::move(match)]() mutable {
+  // Handlers that may block run on their pool; the answer comes back to
+  // this connection's strand.
+  net::thread_pool& pool = lane == Lane::store ? pools_.store : pools_.slow;
+  net::post(pool, [self = shared_from_this(), ex = stream_.get_executor(), req,
+                   m = std::move(match)]() mutable {
     Response res = self->router_.respond(*req, std::move(m));
     net::post(ex, [self, req, r = std::move(res)]() mutable { self->send(req, std::move(r)); });
   });

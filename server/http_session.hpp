@@ -19,10 +19,15 @@
 
 namespace gearsph::server {
 
+// The threads handlers run on, by lane (the I/O lane is the session's own).
+struct HandlerPools {
+  boost::asio::thread_pool& store;
+  boost::asio::thread_pool& slow;
+};
+
 class HttpSession : public std::enable_shared_from_this<HttpSession> {
  public:
-  HttpSession(boost::asio::ip::tcp::socket&& socket, const Router& router,
-              boost::asio::thread_pool& handler_pool);
+  HttpSession(boost::asio::ip::tcp::socket&& socket, const Router& router, HandlerPools pools);
   ~HttpSession();
   HttpSession(const HttpSession&) = delete;
   HttpSession& operator=(const HttpSession&) = delete;
@@ -65,7 +70,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   std::optional<http::request_parser<http::string_body>> parser_;
   const Router& router_;
   Services& services_;
-  boost::asio::thread_pool& handler_pool_;
+  HandlerPools pools_;
   bool first_request_ = true;
   bool closed_ = false;
   std::array<char, 4096> sink_{};

@@ -15,25 +15,26 @@ namespace gearsph::server {
 
 const std::vector<Route>& route_table() {
   using http::verb;
-  constexpr bool slow = true;
+  constexpr Lane store = Lane::store;
+  constexpr Lane slow = Lane::slow;
   static const std::vector<Route> table = {
-      // method        path                               handler                slow
+      // method        path                               handler                lane
       {verb::get, "/", routes::landing},
       {verb::get, "/conformance", routes::conformance},
-      {verb::get, "/health", routes::health},
+      {verb::get, "/health", routes::health},  // queue counts from a cache
       {verb::get, "/schema", routes::schema},
       {verb::get, "/processes", routes::processes},
       {verb::get, "/processes/{process}", routes::process},
       {verb::post, "/processes/{process}/execution", routes::execute, slow},
-      {verb::get, "/jobs", routes::list_jobs},
+      {verb::get, "/jobs", routes::list_jobs, store},
       {verb::post, "/jobs", routes::execute, slow},
-      {verb::get, "/jobs/{id}", routes::job},
+      {verb::get, "/jobs/{id}", routes::job, store},
       {verb::delete_, "/jobs/{id}", routes::dismiss_job, slow},
-      {verb::get, "/jobs/{id}/results", routes::results},
-      {verb::get, "/jobs/{id}/files", routes::files},
-      {verb::get, "/jobs/{id}/files/{name}", routes::file},
+      {verb::get, "/jobs/{id}/results", routes::results, store},
+      {verb::get, "/jobs/{id}/files", routes::files, store},
+      {verb::get, "/jobs/{id}/files/{name}", routes::file, store},
       {verb::get, "/jobs/{id}/images/{image}", routes::image, slow},
-      {verb::get, "/jobs/{id}/events", routes::job_events},
+      {verb::get, "/jobs/{id}/events", routes::job_events, store},  // the status to start with
       {verb::get, "/events", routes::all_events},
       {verb::post, "/studies", routes::create_study, slow},
       {verb::get, "/studies/{id}", routes::study, slow},  // reads every job's summary

@@ -22,11 +22,20 @@ struct HostName {
 };
 std::optional<HostName> parse_host(std::string_view value);
 
+// Where a handler runs. The I/O threads only move bytes and answer from
+// memory; anything that reads the job store or the disk waits elsewhere,
+// so that one slow answer never holds up another connection.
+enum class Lane {
+  io,     // answers from memory: on the connection's I/O thread
+  store,  // reads the job store or a job's files: on the store threads
+  slow,   // may take seconds (prepares jobs, renders, deletes files): on the handler threads
+};
+
 struct Route {
   http::verb method;
   std::string_view pattern;  // "/jobs/{id}/files/{name}": {x} matches one segment
   Handler handler;
-  bool slow = false;  // may block (prepares jobs, renders, deletes files): runs off the I/O threads
+  Lane lane = Lane::io;
 };
 
 class Router {
@@ -43,7 +52,7 @@ class Router {
   struct Match {
     const Route* route = nullptr;    // the handler to run, or
     std::optional<Response> answer;  // the answer without one (404, 405, OPTIONS, static)
-    bool slow() const { return route && route->slow; }
+    Lane lane() const { return route ? route->lane : Lane::io; }
   };
   Match match(Request& req) const;
 

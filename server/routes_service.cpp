@@ -75,7 +75,7 @@ Response health(Services& s, Request&) {
   return json_response(http::status::ok, {{"status", "ok"},
                                           {"version", version()},
                                           {"uptime_s", uptime},
-                                          {"queue", s.store.count_by_status()},
+                                          {"queue", s.queue_counts()},
                                           {"workers", s.config.workers},
                                           {"threads_per_job", s.config.threads_per_job},
                                           {"running_here", s.workers.running()},

@@ -5,6 +5,8 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <map>
+#include <mutex>
 
 #include <nlohmann/json.hpp>
 
@@ -32,6 +34,23 @@ struct Services {
   std::atomic<unsigned short> port{0};  // the port listened on (known once bound)
 
   std::filesystem::path job_dir(const std::string& id) const { return jobs_dir / id; }
+
+  // Jobs by status as /health shows them: refreshed every second off the
+  // I/O threads, so a health check never waits for the store.
+  void refresh_queue_counts() {
+    std::map<std::string, std::int64_t> counts;
+    try {
+      counts = store.count_by_status();
+    } catch (const std::exception&) {
+      return;  // the store is away: keep the last counts
+    }
+    std::lock_guard<std::mutex> lock(counts_mutex_);
+    queue_counts_ = std::move(counts);
+  }
+  std::map<std::string, std::int64_t> queue_counts() const {
+    std::lock_guard<std::mutex> lock(counts_mutex_);
+    return queue_counts_;
+  }
   nlohmann::json status_of(const JobRecord& job) const {
     return status_document(job, workers.live(job.id));
   }
@@ -39,6 +58,10 @@ struct Services {
   void publish_status(const JobRecord& job) const {
     hub.publish(job.id, "status", status_of(job).dump(), is_terminal_status(job.status));
   }
+
+ private:
+  mutable std::mutex counts_mutex_;
+  std::map<std::string, std::int64_t> queue_counts_;
 };
 
 }  // namespace gearsph::server

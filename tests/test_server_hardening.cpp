@@ -3,9 +3,19 @@
 // image cache, the Host header, dismissed runs, transfer codings, the
 // run-time estimate, HTTP versions, store reads off the network threads and
 // the OGC API - Processes document.
+#include <condition_variable>
 #include <fstream>
+#include <future>
+#include <mutex>
 #include <thread>
 
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/thread_pool.hpp>
+
+#include "server/event_hub.hpp"
+#include "server/listener.hpp"
+#include "server/router.hpp"
+#include "server/services.hpp"
 #include "tests/test_server_support.hpp"
 
 namespace gearsph::server::testing {
@@ -185,6 +195,148 @@ TEST_F(ServerHardening, HttpVersionsAndControlCharactersInPaths) {
   EXPECT_NE(detail.find("control character"), std::string::npos) << detail;
   EXPECT_EQ(detail.find("'.'"), std::string::npos) << detail;
   EXPECT_EQ(c.get("/jobs/" + id + "/files/job.json%0a").status, 400u);
+}
+
+// 13. A job store that holds every reader at a gate, as a store under a
+// heavy query or a lost database would.
+class GatedStore : public JobStore {
+ public:
+  void open_gate() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    open_ = true;
+    wake_.notify_all();
+  }
+  // Blocks until a reader waits at the gate.
+  void wait_for_reader() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    wake_.wait(lock, [&] { return waiting_ > 0; });
+  }
+
+  SubmitResult submit(const NewJob& j, const std::optional<Idempotency>&) override {
+    return {SubmitResult::Kind::created, j.id};
+  }
+  SubmitResult submit_study(const NewStudy& s, const std::vector<NewJob>&,
+                            const std::optional<Idempotency>&) override {
+    return {SubmitResult::Kind::created, s.id};
+  }
+  std::optional<JobRecord> job(const std::string&) override {
+    gate();
+    return std::nullopt;
+  }
+  JobPage jobs(const JobQuery&) override {
+    gate();
+    return {};
+  }
+  std::optional<StudyRecord> study(const std::string&) override {
+    gate();
+    return std::nullopt;
+  }
+  std::map<std::string, std::int64_t> count_by_status() override {
+    if (!primed_) {  // the server's first count, before it listens
+      primed_ = true;
+      return {{"accepted", 0}};
+    }
+    gate();
+    return {{"accepted", 0}};
+  }
+  std::optional<JobRecord> claim(const Holder&) override { return std::nullopt; }
+  std::vector<std::string> renew(const Holder&, const std::vector<std::string>&) override {
+    return {};
+  }
+  Recovery reclaim_expired(int) override { return {}; }
+  std::vector<std::string> save_progress(const std::vector<ProgressUpdate>&) override { return {}; }
+  bool finish(const std::string&, const std::string&, const std::string&, const ProgressUpdate&,
+              const std::string&) override {
+    return false;
+  }
+  bool close_dismissed(const std::string&, const std::string&, const ProgressUpdate&) override {
+    return false;
+  }
+  bool requeue(const std::string&, const std::string&, const std::string&) override {
+    return false;
+  }
+  std::optional<JobRecord> dismiss(const std::string&) override { return std::nullopt; }
+  Recovery recover(int) override { return {}; }
+  std::optional<JobRecord> claim_for_dispatch(const std::string&) override { return std::nullopt; }
+  std::vector<JobRecord> dispatched() override { return {}; }
+  bool set_dispatch(const std::string&, const std::string&, const std::string&,
+                    const std::string&) override {
+    return false;
+  }
+  bool release_dispatch(const std::string&, const std::string&) override { return false; }
+  bool start_dispatched(const std::string&, const std::string&, const std::string&) override {
+    return false;
+  }
+  void forget_dispatch(const std::string&) override {}
+  std::vector<JobRecord> active_or_changed_within(double) override { return {}; }
+
+ private:
+  void gate() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    ++waiting_;
+    wake_.notify_all();
+    wake_.wait(lock, [&] { return open_; });
+    --waiting_;
+  }
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool open_ = false;
+  int waiting_ = 0;
+  bool primed_ = false;
+};
+
+class NoWorkers : public Dispatcher {
+ public:
+  void start() override {}
+  void notify() override {}
+  void stop() override {}
+  std::optional<Progress> live(const std::string&) const override { return std::nullopt; }
+  bool cancel(const std::string&) override { return false; }
+  int running() const override { return 0; }
+};
+
+TEST(ServerLanes, HealthAnswersWhileTheStoreHoldsEveryReader) {
+  namespace net = boost::asio;
+  ServerConfig config;
+  GatedStore store;
+  NoWorkers workers;
+  EventHub hub;
+  Services services(config, store, workers, hub);
+  services.refresh_queue_counts();
+  Router router(services);
+  net::io_context ioc;
+  net::thread_pool store_pool(1), slow_pool(1);
+  auto listener =
+      std::make_shared<Listener>(ioc, net::ip::tcp::endpoint(net::ip::make_address("127.0.0.1"), 0),
+                                 router, HandlerPools{store_pool, slow_pool});
+  services.port = listener->port();
+  listener->run();
+  std::thread io([&] { ioc.run(); });  // one I/O thread: a blocked handler would block it all
+  const std::string port = std::to_string(listener->port());
+
+  // A job list that waits at the store's gate...
+  auto listing = std::async(std::launch::async, [&] {
+    HttpClient c("127.0.0.1", port, std::chrono::seconds(60));
+    return c.get("/jobs?limit=1000").status;
+  });
+  store.wait_for_reader();
+  // ...does not hold up the health check, the schema or the events of all jobs.
+  HttpClient c("127.0.0.1", port, std::chrono::seconds(10));
+  ClientResponse health;
+  EXPECT_NO_THROW(health = c.get("/health"));
+  EXPECT_EQ(health.status, 200u);
+  EXPECT_EQ(health.json().at("queue").at("accepted"), 0) << health.body;
+  ClientResponse schema;
+  EXPECT_NO_THROW(schema = c.get("/schema"));
+  EXPECT_EQ(schema.status, 200u);
+  store.open_gate();
+  EXPECT_EQ(listing.get(), 200u);
+
+  listener->stop();
+  ioc.stop();
+  io.join();
+  store_pool.join();
+  slow_pool.join();
 }
 
 }  // namespace
