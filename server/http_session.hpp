@@ -63,7 +63,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void write_events(std::string text, bool last);
   void arm_keepalive();
   void watch_for_close();
-  std::string snapshot_event();
+  void resnapshot();
 
   boost::beast::tcp_stream stream_;
   boost::beast::flat_buffer buffer_;
@@ -84,6 +84,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   bool writing_ = false;
   bool chunked_ = true;          // false for an HTTP/1.0 client: the events end with the connection
   bool final_snapshot_ = false;  // the status sent first was already final
+  bool refreshing_ = false;      // a status snapshot is being read from the store
   boost::asio::steady_timer keepalive_;
 };
 

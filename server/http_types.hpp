@@ -28,6 +28,9 @@ struct EventStream {
   http::response<http::empty_body> head;
   std::string job_id;                          // empty: every job
   std::optional<std::uint64_t> last_event_id;  // from the Last-Event-ID header
+  std::uint64_t after = 0;                     // stream the hub's events after this id
+  std::string first;                           // sent before them (a status snapshot, a reset)
+  bool final = false;                          // `first` is the job's final status: then end
 };
 
 using Response = std::variant<StringResponse, FileResponse, EventStream>;

@@ -197,6 +197,102 @@ TEST_F(ServerHardening, HttpVersionsAndControlCharactersInPaths) {
   EXPECT_EQ(c.get("/jobs/" + id + "/files/job.json%0a").status, 400u);
 }
 
+int status_rank(const std::string& s) {
+  if (s == "accepted") return 0;
+  if (s == "running") return 1;
+  return 2;  // final
+}
+
+// 2 and 3. A finished job's stream, resumed: at its final event it ends at
+// once (204: a browser's EventSource stops reconnecting); from a stale id
+// it sends the current status once and ends; a status never goes back.
+TEST_F(ServerHardening, ResumedStreamsOfFinishedJobsEnd) {
+  auto c = server_->client(std::chrono::seconds(10));
+  const std::string id = submit(c, tiny_job(0.05));
+  ASSERT_EQ(wait_final(c, id).at("status"), "successful");
+  const std::string path = "/jobs/" + id + "/events";
+  auto read = [&](const HttpClient::Headers& headers, std::vector<SseEvent>& out) {
+    return c.events(
+        path,
+        [&](const SseEvent& e) {
+          out.push_back(e);
+          return out.size() < 1000;
+        },
+        headers);
+  };
+  std::vector<SseEvent> whole;
+  ASSERT_EQ(read({}, whole).status, 200u);
+  ASSERT_EQ(whole.size(), 1u);  // the job had finished: its final status, then the end
+  EXPECT_EQ(json::parse(whole[0].data).at("status"), "successful");
+
+  // Resumed at its final event: nothing more will come.
+  std::vector<SseEvent> after_final;
+  ClientResponse head;
+  ASSERT_NO_THROW(head = read({{"Last-Event-ID", whole[0].id}}, after_final));
+  EXPECT_EQ(head.status, 204u);
+  EXPECT_TRUE(after_final.empty());
+
+  // A stale id: the status once, under a new id, then the end.
+  std::vector<SseEvent> stale;
+  ASSERT_NO_THROW(head = read({{"Last-Event-ID", "1"}}, stale));
+  EXPECT_EQ(head.status, 200u);
+  ASSERT_EQ(stale.size(), 1u);
+  EXPECT_EQ(stale[0].event, "status");
+  EXPECT_NE(stale[0].id, "1");
+  EXPECT_EQ(json::parse(stale[0].data).at("status"), "successful");
+  std::vector<SseEvent> again;
+  ASSERT_NO_THROW(head = read({{"Last-Event-ID", stale[0].id}}, again));
+  EXPECT_EQ(head.status, 204u);
+
+  // An id from the future (another server's clock): the same as a stale one.
+  std::vector<SseEvent> future;
+  ASSERT_NO_THROW(read({{"Last-Event-ID", "18446744073709551615"}}, future));
+  ASSERT_EQ(future.size(), 1u);
+  EXPECT_EQ(json::parse(future[0].data).at("status"), "successful");
+
+  // The stream of all jobs resumed from a stale id starts with a reset, and
+  // replays nothing older.
+  std::vector<SseEvent> all;
+  ASSERT_NO_THROW(c.events("/events",
+                           [&](const SseEvent& e) {
+                             all.push_back(e);
+                             return false;
+                           },
+                           {{"Last-Event-ID", "1"}}));
+  ASSERT_EQ(all.size(), 1u);
+  EXPECT_EQ(all[0].event, "reset");
+  EXPECT_GT(std::stoull(all[0].id), 1u);
+}
+
+// 3. A job followed from its start and resumed in the middle: the statuses
+// a client sees only move forward.
+TEST_F(ServerHardening, StatusNeverGoesBackOnAStream) {
+  auto c = server_->client(std::chrono::seconds(30));
+  const std::string id = submit(c, tiny_job(0.1));
+  std::vector<SseEvent> events;
+  c.events("/jobs/" + id + "/events", [&](const SseEvent& e) {
+    events.push_back(e);
+    return true;
+  });
+  ASSERT_GE(events.size(), 2u);
+  for (std::size_t from = 0; from < events.size(); ++from) {
+    std::vector<SseEvent> seen(events.begin(), events.begin() + static_cast<long>(from) + 1);
+    c.events("/jobs/" + id + "/events",
+             [&](const SseEvent& e) {
+               seen.push_back(e);
+               return true;
+             },
+             {{"Last-Event-ID", events[from].id}});
+    int rank = 0;
+    for (const SseEvent& e : seen) {
+      const int r = status_rank(json::parse(e.data).at("status"));
+      EXPECT_GE(r, rank) << "resumed after event " << from << ": " << e.data;
+      rank = std::max(rank, r);
+    }
+    EXPECT_EQ(json::parse(seen.back().data).at("status"), "successful");
+  }
+}
+
 // 13. A job store that holds every reader at a gate, as a store under a
 // heavy query or a lost database would.
 class GatedStore : public JobStore {
