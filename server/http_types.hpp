@@ -54,6 +54,10 @@ bool parse_target(std::string_view target, Request& out);
 std::optional<std::string> percent_decode(std::string_view s, bool plus_is_space);
 std::string percent_encode(std::string_view s);  // for query values in links
 
+// A browser's page load (Accept: text/html, or ?f=html) rather than a
+// program (*/*, JSON, or ?f=json).
+bool wants_html(const Request& req);
+
 StringResponse text_response(http::status status, std::string body, std::string content_type);
 StringResponse json_response(http::status status, const nlohmann::json& body);
 

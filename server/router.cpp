@@ -39,6 +39,9 @@ const std::vector<Route>& route_table() {
       {verb::post, "/studies", routes::create_study, slow},
       {verb::get, "/studies/{id}", routes::study, slow},  // reads every job's summary
       {verb::post, "/preview", routes::preview, slow},    // builds the scene
+      {verb::get, "/login", routes::login_state},
+      {verb::post, "/login", routes::login},  // checks the token itself
+      {verb::delete_, "/login", routes::logout},
   };
   return table;
 }
@@ -52,6 +55,23 @@ bool token_matches(std::string_view presented, std::string_view expected) {
     diff |= static_cast<unsigned char>(p ^ expected[i]);
   }
   return diff == 0;
+}
+
+std::optional<std::string> session_cookie(const http::request_header<>& header) {
+  for (const auto& field : header) {
+    if (field.name() != http::field::cookie) continue;
+    std::string_view rest = field.value();
+    while (!rest.empty()) {
+      const auto semi = rest.find(';');
+      std::string_view pair = rest.substr(0, semi);
+      rest = semi == std::string_view::npos ? std::string_view() : rest.substr(semi + 1);
+      while (!pair.empty() && pair.front() == ' ') pair.remove_prefix(1);
+      const auto eq = pair.find('=');
+      if (eq == std::string_view::npos || pair.substr(0, eq) != kSessionCookie) continue;
+      if (auto token = percent_decode(pair.substr(eq + 1), false)) return token;
+    }
+  }
+  return std::nullopt;
 }
 
 std::optional<HostName> parse_host(std::string_view value) {
@@ -142,7 +162,22 @@ http::response_header<>& head_of(Response& res) {
       res);
 }
 
-std::string presented_token(const http::request_header<>& header) {
+bool is_event_stream_path(const std::vector<std::string>& segments) {
+  return (segments.size() == 1 && segments[0] == "events") ||
+         (segments.size() == 3 && segments[0] == "jobs" && segments[2] == "events");
+}
+
+// The token a request presents, and where: the Authorization header, the
+// cookie the login call sets (what a browser's images, downloads and event
+// streams carry), or, on event streams only, ?access_token= (RFC 6750
+// section 2.3: EventSource cannot set headers).
+struct Credential {
+  enum class From { nothing, header, cookie, query };
+  std::string token;
+  From from = From::nothing;
+};
+
+Credential presented_token(const http::request_header<>& header) {
   const std::string_view auth = header[http::field::authorization];
   constexpr std::string_view scheme = "bearer ";
   if (auth.size() > scheme.size()) {
@@ -150,12 +185,12 @@ std::string presented_token(const http::request_header<>& header) {
     for (std::size_t i = 0; i < scheme.size() && ok; ++i) {
       ok = std::tolower(static_cast<unsigned char>(auth[i])) == scheme[i];
     }
-    if (ok) return std::string(auth.substr(scheme.size()));
+    if (ok) return {std::string(auth.substr(scheme.size())), Credential::From::header};
   }
-  // RFC 6750 2.3: browsers' EventSource cannot set headers.
+  if (auto t = session_cookie(header)) return {*t, Credential::From::cookie};
   Request r;
-  if (parse_target(header.target(), r)) {
-    if (auto t = r.query_value("access_token")) return *t;
+  if (parse_target(header.target(), r) && is_event_stream_path(r.segments)) {
+    if (auto t = r.query_value("access_token")) return {*t, Credential::From::query};
   }
   return {};
 }
@@ -213,6 +248,14 @@ std::optional<std::pair<http::status, std::string>> framing_problem(
   return std::nullopt;
 }
 
+}  // namespace
+
+bool carries_token(const http::request_header<>& header, std::string_view token) {
+  return token_matches(presented_token(header).token, token);
+}
+
+namespace {
+
 bool is_preflight(const http::request_header<>& h) {
   return h.method() == http::verb::options && h.count(http::field::origin) &&
          h.count(http::field::access_control_request_method);
@@ -261,15 +304,58 @@ std::optional<Response> Router::screen(const http::request_header<>& header) con
     }
   }
   if (auto problem = framing_problem(header)) return refuse(problem->first, problem->second);
-  if (!config.token.empty() && !is_preflight(header) &&
-      !token_matches(presented_token(header), config.token)) {
-    Response res = problem::plain(http::status::unauthorized,
-                                  "this server needs \"Authorization: Bearer <token>\"", req.path);
-    head_of(res).set(http::field::www_authenticate, "Bearer realm=\"gearsph\"");
-    decorate(req, res);
-    return res;
+  if (!config.token.empty() && !is_public(header)) {
+    const Credential presented = presented_token(header);
+    if (!token_matches(presented.token, config.token)) {
+      Response res =
+          problem::plain(http::status::unauthorized,
+                         "this server needs \"Authorization: Bearer <token>\"", req.path);
+      head_of(res).set(http::field::www_authenticate, "Bearer realm=\"gearsph\"");
+      decorate(req, res);
+      return res;
+    }
+    // A browser sends the cookie with requests that other pages (of this
+    // host, on another port, say) make it send: changes need this origin.
+    const bool changes = header.method() != http::verb::get &&
+                         header.method() != http::verb::head &&
+                         header.method() != http::verb::options;
+    if (presented.from == Credential::From::cookie && changes && !same_origin(header)) {
+      return refuse(http::status::forbidden,
+                    "a change sent with the session cookie from another origin (" +
+                        std::string(header[http::field::origin]) + ") is refused");
+    }
   }
   return std::nullopt;
+}
+
+bool Router::is_public(const http::request_header<>& header) const {
+  if (is_preflight(header)) return true;
+  Request req;
+  if (!parse_target(header.target(), req)) return false;  // answered 400 later
+  // The login call checks the token itself.
+  if (req.segments.size() == 1 && req.segments[0] == "login") return true;
+  if (header.method() != http::verb::get && header.method() != http::verb::head) return false;
+  req.msg.base() = header;
+  // The dashboard's own files hold no data: a browser loads them before it
+  // has a token to send.
+  if (req.segments.empty()) return wants_html(req);
+  for (const Route& r : routes_) {
+    std::map<std::string, std::string> params;
+    if (segments_match(r.pattern, req.segments, params)) return false;
+  }
+  return find_static(req, services_.config.web_root).has_value();
+}
+
+bool Router::same_origin(const http::request_header<>& header) const {
+  if (!header.count(http::field::origin)) return true;  // not sent by a browser's page
+  const std::string origin(header[http::field::origin]);
+  const std::string& cors = services_.config.cors_origin;
+  if (!cors.empty() && (cors == "*" ? false : cors == origin)) return true;
+  constexpr std::string_view http_scheme = "http://";
+  if (origin.rfind(http_scheme, 0) != 0) return false;  // "null", https behind a proxy, ...
+  const auto from = parse_host(std::string_view(origin).substr(http_scheme.size()));
+  const auto to = parse_host(header[http::field::host]);
+  return from && to && from->host == to->host && from->port.value_or(80) == to->port.value_or(80);
 }
 
 bool Router::host_allowed(const HostName& h) const {

@@ -22,6 +22,12 @@ struct HostName {
 };
 std::optional<HostName> parse_host(std::string_view value);
 
+// The cookie POST /login sets: the token, percent-encoded.
+inline constexpr std::string_view kSessionCookie = "gearsph_token";
+std::optional<std::string> session_cookie(const http::request_header<>& header);
+// Whether the request presents `token` (header, cookie, or on event streams ?access_token=).
+bool carries_token(const http::request_header<>& header, std::string_view token);
+
 // Where a handler runs. The I/O threads only move bytes and answer from
 // memory; anything that reads the job store or the disk waits elsewhere,
 // so that one slow answer never holds up another connection.
@@ -65,6 +71,10 @@ class Router {
  private:
   std::optional<Response> cors_preflight(const Request& req) const;
   bool host_allowed(const HostName& h) const;
+  // Needs no token: CORS preflights, the login call, the dashboard's files.
+  bool is_public(const http::request_header<>& header) const;
+  // Origin, if sent, is this server (or the --cors-origin).
+  bool same_origin(const http::request_header<>& header) const;
   void decorate(const Request& req, Response& res) const;
 
   Services& services_;

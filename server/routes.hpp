@@ -30,6 +30,11 @@ Response image(Services&, Request&);
 Response job_events(Services&, Request&);
 Response all_events(Services&, Request&);
 
+// routes_login.cpp: the cookie a browser carries instead of the token
+Response login_state(Services&, Request&);
+Response login(Services&, Request&);
+Response logout(Services&, Request&);
+
 // routes_studies.cpp
 Response create_study(Services&, Request&);
 Response study(Services&, Request&);

@@ -9,14 +9,6 @@ namespace gearsph::server::routes {
 
 namespace {
 
-bool wants_html(const Request& req) {
-  const std::string accept = req.header(http::field::accept);
-  if (req.query_value("f") == std::optional<std::string>("json")) return false;
-  if (req.query_value("f") == std::optional<std::string>("html")) return true;
-  // A browser asks for text/html first; curl and programs send */* or JSON.
-  return accept.find("text/html") != std::string::npos;
-}
-
 nlohmann::json process_summary() {
   return {{"id", kProcessId},
           {"title", "GearSPH simulation"},

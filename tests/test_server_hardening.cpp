@@ -197,6 +197,91 @@ TEST_F(ServerHardening, HttpVersionsAndControlCharactersInPaths) {
   EXPECT_EQ(c.get("/jobs/" + id + "/files/job.json%0a").status, 400u);
 }
 
+// 4. The dashboard behind --token-file: its files load without the token;
+// the page logs in once and its cookie carries the token on everything a
+// browser fetches by itself (images, downloads, event streams).
+TEST(ServerToken, DashboardFilesAreOpenAndTheLoginCookieCarriesTheToken) {
+  TempDir dir;
+  const std::string token = "s3cret token;with,odd=chars";
+  std::ofstream(dir.path() / "token") << token << "\n";
+  ServerProcess server({"--token-file", (dir.path() / "token").string(), "--threads-per-job", "1"});
+  auto c = server.client();
+  // The page and its scripts and styles: no token needed.
+  const ClientResponse page = c.get("/", {{"Accept", "text/html"}});
+  EXPECT_EQ(page.status, 200u);
+  EXPECT_EQ(page.header("Content-Type"), "text/html; charset=utf-8");
+  for (const char* file :
+       {"/index.html", "/js/app.js", "/js/api.js", "/css/app.css", "/favicon.svg"}) {
+    EXPECT_EQ(c.get(file).status, 200u) << file;
+  }
+  EXPECT_EQ(c.request("HEAD", "/js/app.js").status, 200u);
+  // Data needs it.
+  for (const char* path : {"/", "/jobs", "/schema", "/health", "/no-such-file.js"}) {
+    EXPECT_EQ(c.get(path, {{"Accept", "application/json"}}).status, 401u) << path;
+  }
+  const HttpClient::Headers bearer = {{"Authorization", "Bearer " + token}};
+  const ClientResponse submitted = c.post_json("/jobs", tiny_job().dump(), bearer);
+  ASSERT_EQ(submitted.status, 201u) << submitted.body;
+  const std::string id = submitted.json().at("jobID");
+
+  // ?access_token= is for EventSource: event streams only.
+  std::string encoded;
+  for (const char ch : token) {
+    const auto u = static_cast<unsigned char>(ch);
+    char buf[4];
+    std::snprintf(buf, sizeof buf, "%%%02X", u);
+    encoded += std::isalnum(u) ? std::string(1, ch) : std::string(buf);
+  }
+  EXPECT_EQ(c.get("/health?access_token=" + encoded).status, 401u);
+  EXPECT_EQ(c.get("/jobs/" + id + "?access_token=" + encoded).status, 401u);
+  std::vector<SseEvent> events;
+  const ClientResponse stream =
+      c.events("/jobs/" + id + "/events?access_token=" + encoded, [&](const SseEvent& e) {
+        events.push_back(e);
+        return false;
+      });
+  EXPECT_EQ(stream.status, 200u);
+  EXPECT_EQ(events.size(), 1u);
+
+  // Whether a token is needed, and whether the request carries it.
+  EXPECT_EQ(c.get("/login").json(), json({{"token_required", true}, {"signed_in", false}}));
+  EXPECT_EQ(c.get("/login", bearer).json().at("signed_in"), true);
+  // The login call: a wrong token is refused, the right one sets the cookie.
+  EXPECT_EQ(c.post_json("/login", R"({"token": "guess"})").status, 401u);
+  EXPECT_EQ(c.post_json("/login", R"({"tok": "guess"})").status, 400u);
+  const ClientResponse login = c.post_json("/login", json{{"token", token}}.dump());
+  ASSERT_EQ(login.status, 204u) << login.body;
+  const std::string set_cookie = login.header("Set-Cookie");
+  EXPECT_NE(set_cookie.find("HttpOnly"), std::string::npos) << set_cookie;
+  EXPECT_NE(set_cookie.find("SameSite=Strict"), std::string::npos) << set_cookie;
+  EXPECT_NE(set_cookie.find("Path=/"), std::string::npos) << set_cookie;
+  const std::string cookie = set_cookie.substr(0, set_cookie.find(';'));
+  EXPECT_EQ(cookie.find(' '), std::string::npos) << cookie;
+  EXPECT_EQ(cookie.find(','), std::string::npos) << cookie;
+  const HttpClient::Headers with_cookie = {{"Cookie", "theme=dark; " + cookie}};
+  EXPECT_EQ(c.get("/jobs", with_cookie).status, 200u);
+  EXPECT_EQ(c.get("/login", with_cookie).json().at("signed_in"), true);
+  auto authed = server.client();
+  authed.set_default_header("Authorization", "Bearer " + token);
+  EXPECT_EQ(wait_final(authed, id).at("status"), "successful");
+  EXPECT_EQ(c.get("/jobs/" + id + "/files/job.json", with_cookie).status, 200u);
+  EXPECT_EQ(c.get("/jobs", {{"Cookie", "gearsph_token=wrong"}}).status, 401u);
+  // Changes with the cookie only from this server's own pages.
+  const std::string self = "http://127.0.0.1:" + server.port();
+  HttpClient::Headers same = with_cookie, other = with_cookie, port = with_cookie;
+  same.emplace_back("Origin", self);
+  other.emplace_back("Origin", "http://evil.example");
+  port.emplace_back("Origin", "http://127.0.0.1:1");
+  EXPECT_EQ(c.post_json("/preview", tiny_job().dump(), same).status, 200u);
+  EXPECT_EQ(c.post_json("/preview", tiny_job().dump(), other).status, 403u);
+  EXPECT_EQ(c.post_json("/preview", tiny_job().dump(), port).status, 403u);
+  EXPECT_EQ(c.get("/jobs", other).status, 200u);  // reading is harmless: CORS keeps the answer
+  // Logging out clears the cookie.
+  const ClientResponse logout = c.request("DELETE", "/login");
+  EXPECT_EQ(logout.status, 204u);
+  EXPECT_NE(logout.header("Set-Cookie").find("Max-Age=0"), std::string::npos);
+}
+
 int status_rank(const std::string& s) {
   if (s == "accepted") return 0;
   if (s == "running") return 1;
