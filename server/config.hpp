@@ -64,7 +64,8 @@ struct ServerConfig {
   std::chrono::milliseconds shutdown_grace{3000};    // for in-flight responses on SIGTERM
   Limits limits;
   Timeouts timeouts;
-  ImageProvider image_provider;  // empty: the images endpoint answers 501
+  ImageProvider image_provider;                // empty: the images endpoint answers 501
+  std::uint64_t image_cache_bytes = 64 << 20;  // rendered images kept in memory (0: none)
 };
 
 // Where the job directories are; whether other processes share the store.

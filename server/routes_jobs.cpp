@@ -179,6 +179,7 @@ Response dismiss_job(Services& s, Request& req) {
   const auto before = s.store.dismiss(id);
   if (!before) return no_such_job(req);
   if (before->status == "running") s.workers.cancel(id);
+  s.images.drop_job(id);
   if (before->status == "successful" || before->status == "failed") {
     std::error_code ec;
     std::filesystem::remove_all(s.job_dir(id), ec);

@@ -73,6 +73,7 @@ Response health(Services& s, Request&) {
                                           {"running_here", s.workers.running()},
                                           {"connections", s.connections.load()},
                                           {"event_streams", s.hub.subscribers()},
+                                          {"image_cache", s.images.stats()},
                                           {"requests", s.requests.load()}});
 }
 

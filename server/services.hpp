@@ -14,19 +14,26 @@
 #include "server/dispatcher.hpp"
 #include "server/documents.hpp"
 #include "server/event_hub.hpp"
+#include "server/image_cache.hpp"
 #include "server/job_store.hpp"
 
 namespace gearsph::server {
 
 struct Services {
   Services(const ServerConfig& c, JobStore& s, Dispatcher& w, EventHub& h)
-      : config(c), store(s), workers(w), hub(h), jobs_dir(results_dir_of(c)) {}
+      : config(c),
+        store(s),
+        workers(w),
+        hub(h),
+        jobs_dir(results_dir_of(c)),
+        images(c.image_cache_bytes) {}
 
   const ServerConfig& config;
   JobStore& store;
   Dispatcher& workers;  // the worker pool, or the Slurm dispatcher
   EventHub& hub;
   std::filesystem::path jobs_dir;
+  ImageCache images;  // rendered images, outside the job directories
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
   std::atomic<int> connections{0};
   std::atomic<std::int64_t> requests{0};

@@ -13,6 +13,7 @@
 #include <boost/asio/thread_pool.hpp>
 
 #include "server/event_hub.hpp"
+#include "server/image_cache.hpp"
 #include "server/listener.hpp"
 #include "server/router.hpp"
 #include "server/services.hpp"
@@ -376,6 +377,30 @@ TEST_F(ServerHardening, StatusNeverGoesBackOnAStream) {
     }
     EXPECT_EQ(json::parse(seen.back().data).at("status"), "successful");
   }
+}
+
+// 5. The image cache on its own: a byte budget, least recently used out first.
+TEST(ImageCache, KeepsTheRecentlyUsedWithinItsBudget) {
+  ImageCache cache(250);
+  cache.put("a/1", std::string(100, 'a'));
+  cache.put("a/2", std::string(100, 'b'));
+  ASSERT_TRUE(cache.get("a/1"));            // a/1 is now the most recent
+  cache.put("b/1", std::string(100, 'c'));  // a/2 makes room
+  EXPECT_FALSE(cache.get("a/2"));
+  EXPECT_EQ(*cache.get("a/1"), std::string(100, 'a'));
+  EXPECT_TRUE(cache.get("b/1"));
+  EXPECT_EQ(cache.stats().at("bytes"), 200);
+  cache.put("b/2", std::string(300, 'd'));  // over the whole budget: not kept
+  EXPECT_FALSE(cache.get("b/2"));
+  cache.put("a/1", std::string(50, 'e'));  // replaced, not counted twice
+  EXPECT_EQ(cache.stats().at("bytes"), 150);
+  cache.drop_job("a");  // a dismissed job's images go
+  EXPECT_FALSE(cache.get("a/1"));
+  EXPECT_TRUE(cache.get("b/1"));
+  EXPECT_EQ(cache.stats().at("entries"), 1);
+  ImageCache none(0);
+  none.put("a/1", "x");
+  EXPECT_FALSE(none.get("a/1"));
 }
 
 // 13. A job store that holds every reader at a gate, as a store under a

@@ -93,6 +93,18 @@ int cmd_serve(Args& args) {
   l.max_study_jobs = static_cast<std::int64_t>(
       number_option(args, "max-study-jobs", static_cast<double>(l.max_study_jobs)));
   l.max_connections = args.integer("max-connections", l.max_connections);
+  if (auto v = args.option("image-cache-mb")) {
+    std::size_t used = 0;
+    double mb = -1;
+    try {
+      mb = std::stod(*v, &used);
+    } catch (const std::exception&) {
+    }
+    if (used != v->size() || !(mb >= 0) || mb > 1e6) {
+      throw std::invalid_argument("--image-cache-mb takes megabytes (0 or more), not '" + *v + "'");
+    }
+    c.image_cache_bytes = static_cast<std::uint64_t>(mb * 1e6);
+  }
 
   server::Timeouts& t = c.timeouts;
   t.header = seconds_option(args, "header-timeout", t.header);
