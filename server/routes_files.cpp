@@ -37,6 +37,13 @@ std::optional<JobRecord> find_job(Services& s, const Request& req) {
   return s.store.job(req.param("id"));
 }
 
+// A dismissed job's files are deleted (once its run has stopped): none is
+// listed or served meanwhile.
+StringResponse dismissed(const Request& req, const JobRecord& job) {
+  return problem::plain(http::status::not_found,
+                        "job " + job.id + " was dismissed; its files are deleted", req.path);
+}
+
 bool is_field_name(std::string_view f) {
   return !f.empty() && f.size() <= 64 && std::all_of(f.begin(), f.end(), [](char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
@@ -62,6 +69,7 @@ std::string short_number(double v) {
 Response files(Services& s, Request& req) {
   const auto record = find_job(s, req);
   if (!record) return no_such_job(req);
+  if (record->status == "dismissed") return dismissed(req, *record);
   nlohmann::json list = nlohmann::json::array();
   for (const FileEntry& f : list_files(s.job_dir(record->id))) {
     list.push_back({{"name", f.name},
@@ -75,6 +83,7 @@ Response files(Services& s, Request& req) {
 Response file(Services& s, Request& req) {
   const auto record = find_job(s, req);
   if (!record) return no_such_job(req);
+  if (record->status == "dismissed") return dismissed(req, *record);
   const std::string& name = req.param("name");
   // Only a name the directory listing shows: no "..", no "/", no links.
   const auto path = find_listed_file(s.job_dir(record->id), name);

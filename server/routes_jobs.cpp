@@ -178,9 +178,13 @@ Response dismiss_job(Services& s, Request& req) {
   const std::string& id = req.param("id");
   const auto before = s.store.dismiss(id);
   if (!before) return no_such_job(req);
-  if (before->status == "running") s.workers.cancel(id);
   s.images.drop_job(id);
-  if (before->status == "successful" || before->status == "failed") {
+  if (before->status == "running") {
+    // The worker stops at its next check and then deletes what the run wrote.
+    s.workers.cancel(id);
+  } else if (!s.workers.live(id)) {
+    // Finished, or dismissed before (files left by a run that was stopping,
+    // or by a crash): the files go now.
     std::error_code ec;
     std::filesystem::remove_all(s.job_dir(id), ec);
   }

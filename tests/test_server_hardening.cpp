@@ -403,6 +403,36 @@ TEST(ImageCache, KeepsTheRecentlyUsedWithinItsBudget) {
   EXPECT_FALSE(none.get("a/1"));
 }
 
+// 7. A job dismissed while it runs: its files are neither listed nor served,
+// and they are deleted once the run has stopped; a second DELETE removes
+// whatever is left (a crash, say).
+TEST(ServerDismiss, ARunningJobsFilesGoOnceItStops) {
+  ServerProcess server({"--workers", "1", "--threads-per-job", "1"});
+  auto c = server.client();
+  json long_job = tiny_job(20.0);
+  long_job["output"] = {{"frames", 400}};
+  const std::string id = submit(c, long_job);
+  wait_for(c, id, [](const json& s) { return s.at("step").get<int>() > 0; });
+  const fs::path dir = server.data() / "jobs" / id;
+  ASSERT_TRUE(fs::exists(dir / "job.json"));
+  ASSERT_EQ(c.get("/jobs/" + id + "/files/job.json").status, 200u);
+
+  ASSERT_EQ(c.request("DELETE", "/jobs/" + id).json().at("status"), "dismissed");
+  EXPECT_EQ(c.get("/jobs/" + id + "/files").status, 404u);
+  EXPECT_EQ(c.get("/jobs/" + id + "/files/job.json").status, 404u);
+  wait_for(c, id, [](const json& s) {
+    return s.at("message").get<std::string>().find("stopped at step") != std::string::npos;
+  });
+  EXPECT_FALSE(fs::exists(dir));
+
+  // Left behind by a run that could not clean up: the next DELETE does.
+  fs::create_directories(dir);
+  std::ofstream(dir / "history.csv") << "time_s\n0\n";
+  ASSERT_EQ(c.request("DELETE", "/jobs/" + id).status, 200u);
+  EXPECT_FALSE(fs::exists(dir));
+  expect_consistent_store(server.data());
+}
+
 // 13. A job store that holds every reader at a gate, as a store under a
 // heavy query or a lost database would.
 class GatedStore : public JobStore {
