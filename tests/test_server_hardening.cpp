@@ -433,6 +433,33 @@ TEST(ServerDismiss, ARunningJobsFilesGoOnceItStops) {
   expect_consistent_store(server.data());
 }
 
+// 9. The run-time estimate counts writing the output: a tiny job asked for
+// 10,000 frames and a million history points ran for minutes, not seconds.
+TEST_F(ServerHardening, RunTimeEstimateCountsTheOutput) {
+  auto c = server_->client();
+  json plain = tiny_job(0.05);
+  json heavy = plain;
+  heavy["output"] = {{"frames", 10000}, {"history_points", 1000000}};
+  const json a = c.post_json("/preview", plain.dump()).json();
+  const json b = c.post_json("/preview", heavy.dump()).json();
+  ASSERT_TRUE(a.contains("run_time")) << a.dump().substr(0, 300);
+  ASSERT_TRUE(b.contains("run_time")) << b.dump().substr(0, 300);
+  const json& ra = a.at("run_time");
+  const json& rb = b.at("run_time");
+  // The same computing, far more writing.
+  EXPECT_DOUBLE_EQ(ra.at("compute_s").get<double>(), rb.at("compute_s").get<double>());
+  EXPECT_GT(rb.at("output_s").get<double>(), 10 * ra.at("output_s").get<double>());
+  EXPECT_GT(rb.at("output_s").get<double>(), rb.at("compute_s").get<double>());
+  // Such a run took about three minutes (3,974 frames of 315 particles);
+  // the estimate was 2 s.
+  EXPECT_GT(rb.at("output_s").get<double>(), 30.0);
+  for (const json* r : {&ra, &rb}) {
+    EXPECT_DOUBLE_EQ(r->at("wall_s").get<double>(),
+                     r->at("compute_s").get<double>() + r->at("output_s").get<double>());
+  }
+  EXPECT_NE(rb.at("note").get<std::string>().find("frames"), std::string::npos);
+}
+
 // 13. A job store that holds every reader at a gate, as a store under a
 // heavy query or a lost database would.
 class GatedStore : public JobStore {
