@@ -6,11 +6,16 @@
 #include <condition_variable>
 #include <fstream>
 #include <future>
+#include <map>
 #include <mutex>
+#include <regex>
 #include <thread>
 
 #include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/thread_pool.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
 
 #include "server/event_hub.hpp"
 #include "server/image_cache.hpp"
@@ -458,6 +463,194 @@ TEST_F(ServerHardening, RunTimeEstimateCountsTheOutput) {
                      r->at("compute_s").get<double>() + r->at("output_s").get<double>());
   }
   EXPECT_NE(rb.at("note").get<std::string>().find("frames"), std::string::npos);
+}
+
+// 10. A stand-in for a proxy that serves the API below /api: it answers a
+// submission, the job's event stream (one final status), its results and a
+// file, and records every target asked for.
+class ApiBelowAPath {
+ public:
+  explicit ApiBelowAPath(std::string id)
+      : id_(std::move(id)), acceptor_(ioc_, {boost::asio::ip::make_address("127.0.0.1"), 0}) {
+    thread_ = std::thread([this] { serve(); });
+  }
+  ~ApiBelowAPath() {
+    boost::system::error_code ec;
+    acceptor_.close(ec);
+    thread_.join();
+  }
+  std::string url() const {
+    return "http://127.0.0.1:" + std::to_string(acceptor_.local_endpoint().port());
+  }
+  std::vector<std::string> targets() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return targets_;
+  }
+
+ private:
+  void serve() {
+    namespace http = boost::beast::http;
+    for (;;) {
+      boost::system::error_code ec;
+      boost::asio::ip::tcp::socket socket(ioc_);
+      acceptor_.accept(socket, ec);
+      if (ec) return;
+      boost::beast::flat_buffer buffer;
+      for (;;) {
+        http::request<http::string_body> req;
+        http::read(socket, buffer, req, ec);
+        if (ec) break;
+        const std::string target(req.target());
+        {
+          std::lock_guard<std::mutex> lock(mutex_);
+          targets_.push_back(target);
+        }
+        http::response<http::string_body> res{http::status::ok, 11};
+        const std::string job = "/api/jobs/" + id_;
+        const json status = {{"jobID", id_}, {"status", "successful"}, {"message", "done"}};
+        if (req.method() == http::verb::post && target == "/api/jobs") {
+          res.result(http::status::created);
+          res.set(http::field::location, "/jobs/" + id_);
+          res.set(http::field::content_type, "application/json");
+          res.body() = json{{"jobID", id_}, {"status", "accepted"}}.dump();
+        } else if (target == job + "/events") {
+          res.set(http::field::content_type, "text/event-stream");
+          res.body() = "id: 7\nevent: status\ndata: " + status.dump() + "\n\n";
+          res.keep_alive(false);
+        } else if (target == job) {
+          res.set(http::field::content_type, "application/json");
+          res.body() = status.dump();
+        } else if (target == job + "/results") {
+          res.set(http::field::content_type, "application/json");
+          res.body() =
+              json{{"jobID", id_},
+                   {"files",
+                    {{{"name", "history.csv"}, {"href", "/jobs/" + id_ + "/files/history.csv"}}}}}
+                  .dump();
+        } else if (target == job + "/files/history.csv") {
+          res.set(http::field::content_type, "text/csv");
+          res.body() = "time_s\n0\n";
+        } else {
+          res.result(http::status::not_found);
+        }
+        res.prepare_payload();
+        http::write(socket, res, ec);
+        if (ec || !res.keep_alive() || !req.keep_alive()) break;
+      }
+    }
+  }
+
+  std::string id_;
+  boost::asio::io_context ioc_;
+  boost::asio::ip::tcp::acceptor acceptor_;
+  std::thread thread_;
+  std::mutex mutex_;
+  std::vector<std::string> targets_;
+};
+
+int run_command(const std::string& cmd) {
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// gearsph submit --server http://host:port/api: every request below /api,
+// the job's URL printed as it is, links of the server's followed below it.
+TEST(ServerSubmitCli, KeepsThePathOfTheServerUrl) {
+  TempDir dir;
+  const std::string id = "0b5e8d3c-6c1f-4f57-9a3e-1f0c2a9d4e71";
+  ApiBelowAPath proxy(id);
+  std::ofstream(dir.path() / "job.json") << tiny_job().dump();
+  const int status = run_command(
+      std::string(GEARSPH_BINARY) + " submit " + (dir.path() / "job.json").string() + " --server " +
+      proxy.url() + "/api/ --wait --out " + (dir.path() / "out").string() + " > " +
+      (dir.path() / "stdout").string() + " 2> " + (dir.path() / "stderr").string());
+  const std::string err = slurp(dir.path() / "stderr");
+  EXPECT_EQ(status, 0) << err;
+  EXPECT_EQ(slurp(dir.path() / "stdout"), id + "\n");
+  EXPECT_NE(err.find(proxy.url() + "/api/jobs/" + id), std::string::npos) << err;
+  EXPECT_EQ(slurp(dir.path() / "out" / "history.csv"), "time_s\n0\n") << err;
+  const auto targets = proxy.targets();
+  EXPECT_GE(targets.size(), 4u);
+  for (const std::string& t : targets) EXPECT_EQ(t.rfind("/api/", 0), 0u) << t;
+}
+
+// --wait with the server gone: it tries for --retry-for seconds, then says so.
+TEST(ServerSubmitCli, GivesUpAfterRetryFor) {
+  ServerProcess server({"--workers", "1", "--threads-per-job", "1"});
+  std::ofstream(server.dir() / "job.json") << tiny_job(20.0).dump();
+  auto submitting = std::async(std::launch::async, [&] {
+    return run_command(std::string(GEARSPH_BINARY) + " submit " +
+                       (server.dir() / "job.json").string() + " --server " + server.url() +
+                       " --wait --retry-for 2 > " + (server.dir() / "submit.out").string() +
+                       " 2> " + (server.dir() / "submit.err").string());
+  });
+  auto c = server.client();
+  std::string id;
+  const auto deadline = Clock::now() + std::chrono::seconds(60);
+  while (id.empty() && Clock::now() < deadline) {
+    const json running = c.get("/jobs?status=running").json();
+    if (!running.at("jobs").empty()) id = running.at("jobs").at(0).at("jobID");
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_FALSE(id.empty());
+  server.stop(SIGKILL);
+  ASSERT_EQ(submitting.wait_for(std::chrono::seconds(120)), std::future_status::ready);
+  const std::string err = slurp(server.dir() / "submit.err");
+  EXPECT_EQ(submitting.get(), 1) << err;
+  EXPECT_NE(err.find("--retry-for 2"), std::string::npos) << err;
+}
+
+TEST(ServerSubmitCli, ServerUrls) {
+  const Url plain = Url::parse("http://127.0.0.1:8080");
+  EXPECT_EQ(plain.base, "");
+  EXPECT_EQ(plain.root(), "http://127.0.0.1:8080");
+  const Url proxied = Url::parse("http://gears.example/sph/api/");
+  EXPECT_EQ(proxied.host, "gears.example");
+  EXPECT_EQ(proxied.port, "80");
+  EXPECT_EQ(proxied.base, "/sph/api");
+  EXPECT_EQ(Url::parse("http://[::1]:9000/x").root(), "http://[::1]:9000/x");
+  EXPECT_THROW(Url::parse("https://gears.example"), std::invalid_argument);
+  EXPECT_THROW(Url::parse("http://gears.example/api?x=1"), std::invalid_argument);
+}
+
+// Every option a command reads is in its --help.
+TEST(CliHelp, ListsEveryOptionOfEveryCommand) {
+  const std::map<std::string, std::vector<std::string>> commands_of = {
+      {"cmd_run.cpp", {"run"}},           {"cmd_validate.cpp", {"validate"}},
+      {"cmd_study.cpp", {"study"}},       {"cmd_bench.cpp", {"bench"}},
+      {"cmd_geometry.cpp", {"geometry"}}, {"cmd_render.cpp", {"render", "plot"}},
+      {"cmd_serve.cpp", {"serve"}},       {"cmd_submit.cpp", {"submit"}},
+      {"cmd_worker.cpp", {"worker"}}};
+  const std::regex read_option(
+      R"re((?:option|flag|integer)\("([a-z0-9-]+)"|args, "([a-z0-9-]+)")re");
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(fs::path(GEARSPH_SOURCE_DIR) / "apps" / "gearsph")) {
+    const std::string file = e.path().filename().string();
+    if (file.rfind("cmd_", 0) != 0 || e.path().extension() != ".cpp") continue;
+    const auto it = commands_of.find(file);
+    if (file == "cmd_serve_images.cpp") continue;  // no command of its own
+    ASSERT_NE(it, commands_of.end()) << file << ": which command is it?";
+    ++files;
+    std::string help;
+    for (const std::string& cmd : it->second) {
+      FILE* pipe = popen((std::string(GEARSPH_BINARY) + " " + cmd + " --help").c_str(), "r");
+      ASSERT_NE(pipe, nullptr);
+      char buf[4096];
+      for (std::size_t got; (got = std::fread(buf, 1, sizeof buf, pipe)) > 0;)
+        help.append(buf, got);
+      pclose(pipe);
+    }
+    const std::string source = slurp(e.path());
+    for (std::sregex_iterator m(source.begin(), source.end(), read_option), end; m != end; ++m) {
+      const std::string name = (*m)[1].matched ? (*m)[1].str() : (*m)[2].str();
+      const std::regex listed("--" + name + "([^a-z0-9-]|$)");
+      EXPECT_TRUE(std::regex_search(help, listed))
+          << "gearsph " << it->second.front() << " reads --" << name
+          << " but its --help does not list it:\n"
+          << help;
+    }
+  }
+  EXPECT_EQ(files, static_cast<int>(commands_of.size()));
 }
 
 // 13. A job store that holds every reader at a gate, as a store under a
