@@ -190,6 +190,22 @@ class PostgresJobStore : public JobStore {
       params.push_back(q.study_id);
       where += " AND study_id = $" + std::to_string(params.size());
     }
+    if (!q.created_from.empty()) {
+      params.push_back(q.created_from);
+      where += " AND created >= $" + std::to_string(params.size());
+    }
+    if (!q.created_to.empty()) {
+      params.push_back(q.created_to);
+      where += " AND created <= $" + std::to_string(params.size());
+    }
+    if (q.min_wall_s >= 0) {
+      params.push_back(param(q.min_wall_s));
+      where += " AND wall_s >= $" + std::to_string(params.size()) + "::double precision";
+    }
+    if (q.max_wall_s >= 0) {
+      params.push_back(param(q.max_wall_s));
+      where += " AND wall_s <= $" + std::to_string(params.size()) + "::double precision";
+    }
     auto db = pool_.acquire();
     JobPage page;
     {

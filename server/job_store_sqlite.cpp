@@ -165,10 +165,18 @@ class SqliteJobStore : public JobStore {
       where += ")";
     }
     if (!q.study_id.empty()) where += " AND study_id = ?";
+    if (!q.created_from.empty()) where += " AND created >= ?";
+    if (!q.created_to.empty()) where += " AND created <= ?";
+    if (q.min_wall_s >= 0) where += " AND wall_s >= ?";
+    if (q.max_wall_s >= 0) where += " AND wall_s <= ?";
     auto bind_filters = [&](sqlite::Statement& s) {
       int n = 1;
       for (const std::string& st : q.statuses) s.bind(n++, st);
       if (!q.study_id.empty()) s.bind(n++, q.study_id);
+      if (!q.created_from.empty()) s.bind(n++, q.created_from);
+      if (!q.created_to.empty()) s.bind(n++, q.created_to);
+      if (q.min_wall_s >= 0) s.bind(n++, q.min_wall_s);
+      if (q.max_wall_s >= 0) s.bind(n++, q.max_wall_s);
       return n;
     };
     auto db = pool_.acquire();

@@ -18,7 +18,7 @@ nlohmann::json process_summary() {
            "results.xmf."},
           {"version", version()},
           {"jobControlOptions", {"async-execute", "dismiss"}},
-          {"outputTransmission", {"reference"}},
+          {"outputTransmission", {"value", "reference"}},
           {"links",
            {link(std::string("/processes/") + kProcessId, "self", "application/json",
                  "process description"),
@@ -110,15 +110,21 @@ Response process(Services&, Request& req) {
         {"minOccurs", 1},
         {"maxOccurs", 1},
         {"schema", job_schema()}}}};
-  d["outputs"] = {{"summary",
-                   {{"title", "Summary numbers"},
-                    {"schema", {{"type", "object"}, {"contentMediaType", "application/json"}}}}},
-                  {"history",
-                   {{"title", "Time histories"},
-                    {"schema", {{"type", "string"}, {"contentMediaType", "text/csv"}}}}},
-                  {"results",
-                   {{"title", "Particle snapshots (HDF5, with an XDMF sidecar for ParaView)"},
-                    {"schema", {{"type", "string"}, {"contentMediaType", "application/x-hdf5"}}}}}};
+  // In GET /jobs/{id}/results under these ids: summary as a value, the
+  // others as links.
+  d["outputs"] = {
+      {"summary",
+       {{"title", "Summary numbers"},
+        {"description", "summary.json: peak stresses and where, forces, stability, energy drift"},
+        {"schema", {{"type", "object"}, {"contentMediaType", "application/json"}}}}},
+      {"history",
+       {{"title", "Time histories"},
+        {"description", "history.csv, by reference"},
+        {"schema", {{"type", "string"}, {"contentMediaType", "text/csv"}}}}},
+      {"results",
+       {{"title", "Particle snapshots (HDF5, with an XDMF sidecar for ParaView)"},
+        {"description", "results.h5, by reference; results.xmf is among the job's files"},
+        {"schema", {{"type", "string"}, {"contentMediaType", "application/x-hdf5"}}}}}};
   return json_response(http::status::ok, d);
 }
 

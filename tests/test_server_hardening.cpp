@@ -653,6 +653,96 @@ TEST(CliHelp, ListsEveryOptionOfEveryCommand) {
   EXPECT_EQ(files, static_cast<int>(commands_of.size()));
 }
 
+// 14. OGC API - Processes where the service claims it: qualified inputs,
+// results by output id, the job list's parameters honoured or refused.
+TEST_F(ServerHardening, OgcQualifiedInputsResultsAndJobListParameters) {
+  auto c = server_->client();
+  const std::string execute = "/processes/gearsph-simulation/execution";
+  const ClientResponse qualified = c.post_json(
+      execute,
+      json{{"inputs", {{"job", {{"value", tiny_job()}, {"mediaType", "application/json"}}}}},
+           {"outputs", {{"summary", json::object()}}},
+           {"response", "document"}}
+          .dump());
+  ASSERT_EQ(qualified.status, 201u) << qualified.body;
+  const std::string id = qualified.json().at("jobID");
+  json bad = tiny_job();
+  bad["time"]["end_s"] = -1;
+  const ClientResponse invalid =
+      c.post_json(execute, json{{"inputs", {{"job", {{"value", bad}}}}}}.dump());
+  ASSERT_EQ(invalid.status, 400u);
+  EXPECT_EQ(invalid.json().at("errors").at(0).at("pointer"), "/inputs/job/value/time/end_s");
+  const auto refused = [&](const json& request) {
+    const ClientResponse r = c.post_json(execute, request.dump());
+    EXPECT_EQ(r.status, 400u) << request.dump() << ": " << r.body;
+    return r.status == 400u ? r.json().at("errors").at(0).at("pointer").get<std::string>()
+                            : std::string();
+  };
+  EXPECT_EQ(refused({{"inputs", {{"job", {{"value", tiny_job()}, {"mediaType", "text/csv"}}}}}}),
+            "/inputs/job/mediaType");
+  EXPECT_EQ(refused({{"inputs", {{"job", {{"href", "http://example.com/job.json"}}}}}}),
+            "/inputs/job/href");
+  EXPECT_EQ(refused({{"inputs", {{"job", tiny_job()}, {"mesh", 1}}}}), "/inputs/mesh");
+  EXPECT_EQ(refused({{"inputs", {{"job", tiny_job()}}}, {"response", "raw"}}), "/response");
+  EXPECT_EQ(refused({{"inputs", {{"job", tiny_job()}}}, {"subscriber", json::object()}}),
+            "/subscriber");
+  EXPECT_EQ(refused({{"inputs", {{"job", tiny_job()}}}, {"outputs", {{"mesh", json::object()}}}}),
+            "/outputs/mesh");
+
+  // Results by the declared output ids.
+  ASSERT_EQ(wait_final(c, id).at("status"), "successful");
+  const json results = c.get("/jobs/" + id + "/results").json();
+  EXPECT_TRUE(results.at("summary").contains("max_von_mises_Pa"));
+  EXPECT_EQ(results.at("history").at("href"), "/jobs/" + id + "/files/history.csv");
+  EXPECT_EQ(results.at("history").at("type"), "text/csv; charset=utf-8");
+  EXPECT_EQ(c.get(results.at("history").at("href")).status, 200u);
+#ifdef GEARSPH_WITH_RENDER
+  EXPECT_EQ(results.at("results").at("href"), "/jobs/" + id + "/files/results.h5");
+#endif
+  const json outputs = c.get("/processes/gearsph-simulation").json().at("outputs");
+  for (const char* output : {"summary", "history", "results"}) {
+    EXPECT_TRUE(outputs.contains(output)) << output;
+  }
+
+  // The job list: every OGC parameter honoured, anything else refused.
+  const auto matched = [&](const std::string& query) {
+    const ClientResponse r = c.get("/jobs?" + query);
+    EXPECT_EQ(r.status, 200u) << query << ": " << r.body;
+    return r.status == 200u ? r.json().at("numberMatched").get<int>() : -1;
+  };
+  const int all = matched("limit=1");
+  ASSERT_GE(all, 1);
+  EXPECT_EQ(matched("processID=gearsph-simulation"), all);
+  EXPECT_EQ(matched("processID=other"), 0);
+  EXPECT_EQ(matched("type=process"), all);
+  EXPECT_EQ(matched("type=other"), 0);
+  EXPECT_EQ(matched("datetime=2000-01-01T00:00:00Z/.."), all);
+  EXPECT_EQ(matched("datetime=../2000-01-01"), 0);
+  EXPECT_EQ(matched("datetime=2000-01-01T00:00:00%2B02:00/2999-12-31"), all);
+  const std::string created =
+      results.contains("jobID") ? c.get("/jobs/" + id).json().at("created").get<std::string>() : "";
+  EXPECT_EQ(matched("datetime=" + created.substr(0, 10)), all);  // today, as a date
+  EXPECT_GE(matched("datetime=" + created), 1);                  // the instant
+  EXPECT_EQ(matched("minDuration=0"), all);
+  EXPECT_EQ(matched("minDuration=100000"), 0);
+  EXPECT_EQ(matched("maxDuration=100000"), all);
+  EXPECT_EQ(matched("maxDuration=0&status=successful"), 0);
+  for (const std::string query :
+       {"datetime=yesterday", "datetime=2024-13-01", "datetime=2024-05-02/2024-05-01",
+        "minDuration=-1", "maxDuration=x", "sort=created", "f=html", "statuss=running"}) {
+    const ClientResponse r = c.get("/jobs?" + query);
+    EXPECT_EQ(r.status, 400u) << query;
+    EXPECT_EQ(r.header("Content-Type"), "application/problem+json") << query;
+  }
+  // The pages' links keep the filters.
+  const json page = c.get("/jobs?limit=1&processID=gearsph-simulation").json();
+  for (const json& l : page.at("links")) {
+    EXPECT_NE(l.at("href").get<std::string>().find("processID=gearsph-simulation"),
+              std::string::npos)
+        << l.dump();
+  }
+}
+
 // 13. A job store that holds every reader at a gate, as a store under a
 // heavy query or a lost database would.
 class GatedStore : public JobStore {
