@@ -20,6 +20,7 @@ const std::vector<Route>& route_table() {
   static const std::vector<Route> table = {
       // method        path                               handler                lane
       {verb::get, "/", routes::landing},
+      {verb::get, "/api", routes::api_definition},
       {verb::get, "/conformance", routes::conformance},
       {verb::get, "/health", routes::health},  // queue counts from a cache
       {verb::get, "/schema", routes::schema},

@@ -8,6 +8,7 @@ namespace gearsph::server::routes {
 
 // routes_service.cpp: the service's description of itself
 Response landing(Services&, Request&);
+Response api_definition(Services&, Request&);  // GET /api: the OpenAPI document
 Response conformance(Services&, Request&);
 Response health(Services&, Request&);
 Response schema(Services&, Request&);

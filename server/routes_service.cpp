@@ -1,5 +1,6 @@
 // The service describing itself: landing page, conformance, health, the job
 // schema and the one process (OGC API - Processes).
+#include "server/openapi.hpp"
 #include "server/problem.hpp"
 #include "server/routes.hpp"
 #include "server/static_files.hpp"
@@ -8,6 +9,8 @@
 namespace gearsph::server::routes {
 
 namespace {
+
+constexpr const char* kOpenApiType = "application/vnd.oai.openapi+json;version=3.0";
 
 nlohmann::json process_summary() {
   return {{"id", kProcessId},
@@ -41,6 +44,7 @@ Response landing(Services& s, Request& req) {
        {"version", version()},
        {"links",
         {link("/", "self", "application/json", "this document"),
+         link("/api", "service-desc", kOpenApiType, "the API definition (OpenAPI 3.0)"),
          link("/conformance", "http://www.opengis.net/def/rel/ogc/1.0/conformance",
               "application/json", "conformance classes"),
          link("/processes", "http://www.opengis.net/def/rel/ogc/1.0/processes", "application/json",
@@ -52,12 +56,25 @@ Response landing(Services& s, Request& req) {
          link("/events", "alternate", "text/event-stream", "events of all jobs")}}});
 }
 
+Response api_definition(Services&, Request&) {
+  // The document as written, with this build's version.
+  static const std::string text = [] {
+    nlohmann::json doc = nlohmann::json::parse(openapi_document());
+    doc["info"]["version"] = version();
+    return doc.dump(1) + "\n";
+  }();
+  StringResponse res = text_response(http::status::ok, text, kOpenApiType);
+  res.set(http::field::cache_control, "no-cache");
+  return res;
+}
+
 Response conformance(Services&, Request&) {
   return json_response(http::status::ok,
                        {{"conformsTo",
                          {"http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/core",
                           "http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/json",
                           "http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/job-list",
+                          "http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/oas30",
                           "http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/dismiss"}}});
 }
 

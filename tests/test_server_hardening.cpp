@@ -743,6 +743,87 @@ TEST_F(ServerHardening, OgcQualifiedInputsResultsAndJobListParameters) {
   }
 }
 
+// 14. The API definition (OpenAPI 3.0 at /api, linked as service-desc)
+// describes exactly the routes the router has: each path and method, each
+// path parameter declared. (Paths compare with their parameters' names
+// blanked: the document uses OGC's names, the router its own.)
+std::string blank_parameters(std::string path) {
+  for (auto open = path.find('{'); open != std::string::npos; open = path.find('{', open + 2)) {
+    path.erase(open + 1, path.find('}', open) - open - 1);
+  }
+  return path;
+}
+
+TEST_F(ServerHardening, ApiDefinitionDescribesExactlyTheRoutes) {
+  auto c = server_->client();
+  const ClientResponse r = c.get("/api");
+  ASSERT_EQ(r.status, 200u);
+  EXPECT_EQ(r.header("Content-Type"), "application/vnd.oai.openapi+json;version=3.0");
+  const json doc = r.json();
+  EXPECT_EQ(doc.at("openapi").get<std::string>().rfind("3.0.", 0), 0u);
+  EXPECT_FALSE(doc.at("info").at("title").get<std::string>().empty());
+
+  std::set<std::string> routed, described;
+  for (const Route& route : route_table()) {
+    std::string method(http::to_string(route.method));
+    std::transform(method.begin(), method.end(), method.begin(),
+                   [](unsigned char ch) { return std::tolower(ch); });
+    routed.insert(method + " " + blank_parameters(std::string(route.pattern)));
+  }
+  for (const auto& [path, item] : doc.at("paths").items()) {
+    for (const auto& [method, operation] : item.items()) {
+      if (method == "parameters") continue;
+      described.insert(method + " " + blank_parameters(path));
+      EXPECT_FALSE(operation.at("summary").get<std::string>().empty()) << method << " " << path;
+      EXPECT_FALSE(operation.at("responses").empty()) << method << " " << path;
+      // Every {parameter} of the path is declared.
+      std::set<std::string> declared;
+      for (const json* list : {&operation, &item}) {
+        for (const json& p : list->value("parameters", json::array())) {
+          if (p.contains("in") && p.at("in") == "path") declared.insert(p.at("name"));
+        }
+      }
+      for (auto open = path.find('{'); open != std::string::npos; open = path.find('{', open + 1)) {
+        const std::string name = path.substr(open + 1, path.find('}', open) - open - 1);
+        EXPECT_TRUE(declared.count(name)) << method << " " << path << ": {" << name << "}";
+      }
+    }
+  }
+  for (const std::string& route : routed) {
+    EXPECT_TRUE(described.count(route)) << route << " is routed but not in the API definition";
+  }
+  for (const std::string& operation : described) {
+    EXPECT_TRUE(routed.count(operation)) << operation << " is described but not routed";
+  }
+  // Every $ref points at a component that exists.
+  std::function<void(const json&)> refs = [&](const json& j) {
+    if (j.is_object()) {
+      for (const auto& [key, value] : j.items()) {
+        if (key == "$ref") {
+          EXPECT_NO_THROW((void)doc.at(json::json_pointer(value.get<std::string>().substr(1))))
+              << value;
+        } else {
+          refs(value);
+        }
+      }
+    } else if (j.is_array()) {
+      for (const json& v : j) refs(v);
+    }
+  };
+  refs(doc);
+  // Linked from the landing page, and claimed among the conformance classes.
+  bool linked = false;
+  const json landing = c.get("/", {{"Accept", "application/json"}}).json();
+  for (const json& l : landing.at("links")) {
+    linked = linked || (l.at("rel") == "service-desc" && l.at("href") == "/api");
+  }
+  EXPECT_TRUE(linked) << landing.dump();
+  const json classes = c.get("/conformance").json().at("conformsTo");
+  EXPECT_NE(std::find(classes.begin(), classes.end(),
+                      "http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/oas30"),
+            classes.end());
+}
+
 // 13. A job store that holds every reader at a gate, as a store under a
 // heavy query or a lost database would.
 class GatedStore : public JobStore {

@@ -144,7 +144,8 @@ TEST_F(ServerImages, RenderedImagesStayOutOfTheResultsInABoundedCache) {
         << "an image was written into the job directory: " << e.path();
   }
   std::set<std::string> listed;
-  for (const json& f : c.get("/jobs/" + *id_ + "/results").json().at("files")) {
+  const json results = c.get("/jobs/" + *id_ + "/results").json();
+  for (const json& f : results.at("files")) {
     listed.insert(f.at("name").get<std::string>());
   }
   for (const std::string& name : listed) EXPECT_EQ(name.rfind("image-", 0), std::string::npos);
