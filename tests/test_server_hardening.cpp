@@ -3,6 +3,7 @@
 // image cache, the Host header, dismissed runs, transfer codings, the
 // run-time estimate, HTTP versions, store reads off the network threads and
 // the OGC API - Processes document.
+#include <atomic>
 #include <condition_variable>
 #include <fstream>
 #include <future>
@@ -475,8 +476,11 @@ class ApiBelowAPath {
     thread_ = std::thread([this] { serve(); });
   }
   ~ApiBelowAPath() {
+    // A connection of its own wakes the accepting thread, which then stops.
+    stopping_ = true;
     boost::system::error_code ec;
-    acceptor_.close(ec);
+    boost::asio::ip::tcp::socket wake(ioc_);
+    wake.connect(acceptor_.local_endpoint(), ec);
     thread_.join();
   }
   std::string url() const {
@@ -494,7 +498,7 @@ class ApiBelowAPath {
       boost::system::error_code ec;
       boost::asio::ip::tcp::socket socket(ioc_);
       acceptor_.accept(socket, ec);
-      if (ec) return;
+      if (ec || stopping_) return;
       boost::beast::flat_buffer buffer;
       for (;;) {
         http::request<http::string_body> req;
@@ -541,6 +545,7 @@ class ApiBelowAPath {
   }
 
   std::string id_;
+  std::atomic<bool> stopping_{false};
   boost::asio::io_context ioc_;
   boost::asio::ip::tcp::acceptor acceptor_;
   std::thread thread_;
