@@ -46,21 +46,27 @@ struct ServerConfig {
   double lease_s = 30.0;                 // claims on a shared store expire unless renewed
   std::vector<std::string> sbatch_args;  // --dispatch slurm: more sbatch options
   std::filesystem::path
-      gearsph_executable;          // --dispatch slurm: what the nodes run; "" for this one
-  int workers = 0;                 // jobs run at the same time; 0: chosen by resolve_defaults
-  int threads_per_job = 0;         // OpenMP threads of each job; 0: chosen by resolve_defaults
-  std::string token;               // non-empty: every request needs "Authorization: Bearer <token>"
-  std::string cors_origin;         // non-empty: CORS for this origin ("*" for any)
+      gearsph_executable;   // --dispatch slurm: what the nodes run; "" for this one
+  int workers = 0;          // jobs run at the same time; 0: chosen by resolve_defaults
+  int threads_per_job = 0;  // OpenMP threads of each job; 0: chosen by resolve_defaults
+  std::string token;        // non-empty: every request needs "Authorization: Bearer <token>"
+  std::string cors_origin;  // non-empty: CORS for this origin ("*" for any)
+  // Host header values answered besides localhost, 127.0.0.1, [::1] and the
+  // bound address (each with the server's port): "name" (any port),
+  // "name:port", or "*" (any Host: a proxy in front checks it).
+  std::vector<std::string> allowed_hosts;
   std::filesystem::path web_root;  // the dashboard; empty: the compiled-in source path
   int max_attempts = 3;            // runs interrupted by a crash this often are failed
   int io_threads = 2;              // threads of the io_context (network only)
   int handler_threads = 2;  // threads for slow handlers (job preparation, rendering, deletion)
+  int store_threads = 2;    // threads for handlers that read the job store or a job's files
   std::chrono::milliseconds progress_interval{250};  // at most 4 progress events/s per job
   std::chrono::milliseconds flush_interval{1000};    // progress batches to the store
   std::chrono::milliseconds shutdown_grace{3000};    // for in-flight responses on SIGTERM
   Limits limits;
   Timeouts timeouts;
-  ImageProvider image_provider;  // empty: the images endpoint answers 501
+  ImageProvider image_provider;                // empty: the images endpoint answers 501
+  std::uint64_t image_cache_bytes = 64 << 20;  // rendered images kept in memory (0: none)
   // Why jobs asking for the FE check ("fe_check": true) cannot run here, ""
   // when they can (gmsh and CalculiX found). Empty: a build without the FE
   // layer. Either way such jobs are refused with 501.

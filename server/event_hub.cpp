@@ -4,6 +4,10 @@
 
 namespace gearsph::server {
 
+std::string sse_text(const Event& e) {
+  return "id: " + std::to_string(e.id) + "\nevent: " + e.type + "\ndata: " + e.data + "\n\n";
+}
+
 EventHub::EventHub(std::size_t capacity) : capacity_(capacity) {
   const auto us = std::chrono::duration_cast<std::chrono::microseconds>(
                       std::chrono::system_clock::now().time_since_epoch())
@@ -63,6 +67,21 @@ EventHub::Batch EventHub::after(std::uint64_t after, const std::string& job_id,
     if (job_id.empty() || e.job_id == job_id) b.events.push_back(e);
   }
   return b;
+}
+
+EventHub::Resume EventHub::resume(std::uint64_t after, const std::string& job_id) const {
+  Resume r;
+  std::lock_guard<std::mutex> lock(mutex_);
+  const std::uint64_t oldest = ring_.empty() ? next_id_ : ring_.front().id;
+  r.complete = after < next_id_ && after + 1 >= oldest;
+  if (!r.complete) return r;
+  for (auto it = ring_.rbegin(); it != ring_.rend() && it->id > after; ++it) {
+    if (it->terminal && (job_id.empty() || it->job_id == job_id)) {
+      r.final_status_ahead = true;
+      break;
+    }
+  }
+  return r;
 }
 
 std::uint64_t EventHub::last_id() const {

@@ -26,6 +26,9 @@ struct Event {
   bool terminal = false;  // a status event with a final status
 };
 
+// The event as Server-Sent Events text: id, event, data, blank line.
+std::string sse_text(const Event& e);
+
 class EventHub {
  public:
   explicit EventHub(std::size_t capacity = 4096);
@@ -58,6 +61,15 @@ class EventHub {
   Batch after(std::uint64_t after, const std::string& job_id, std::size_t max) const;
 
   std::uint64_t last_id() const;
+
+  // What a client that has seen everything up to `after` can get: whether
+  // the ring still holds every event since (else it needs a snapshot), and
+  // whether one of them is a final status of `job_id`.
+  struct Resume {
+    bool complete = false;
+    bool final_status_ahead = false;
+  };
+  Resume resume(std::uint64_t after, const std::string& job_id) const;
   // Shutting down: streams end after what they have not sent yet.
   void close();
   bool closed() const;

@@ -91,8 +91,15 @@ Url Url::parse(const std::string& url) {
     throw std::invalid_argument("the server URL must start with http:// (got '" + url + "')");
   }
   std::string rest = url.substr(scheme.size());
-  rest = rest.substr(0, rest.find('/'));
+  const auto slash = rest.find('/');
+  std::string path = slash == std::string::npos ? "" : rest.substr(slash);
+  rest = rest.substr(0, slash);
+  if (path.find_first_of("?#") != std::string::npos) {
+    throw std::invalid_argument("the server URL has no query or fragment (got '" + url + "')");
+  }
+  while (!path.empty() && path.back() == '/') path.pop_back();
   Url u;
+  u.base = path;
   if (!rest.empty() && rest.front() == '[') {  // [IPv6]:port
     const auto close = rest.find(']');
     if (close == std::string::npos) throw std::invalid_argument("bad server URL '" + url + "'");
@@ -105,6 +112,11 @@ Url Url::parse(const std::string& url) {
   }
   if (u.host.empty() || u.port.empty()) throw std::invalid_argument("bad server URL '" + url + "'");
   return u;
+}
+
+std::string Url::root() const {
+  const bool v6 = host.find(':') != std::string::npos;
+  return "http://" + (v6 ? "[" + host + "]" : host) + ":" + port + base;
 }
 
 struct HttpClient::Impl {
@@ -163,7 +175,8 @@ struct HttpClient::Impl {
     }
     req.target(target);
     req.version(11);
-    req.set(http::field::host, host + ":" + port);
+    const bool v6 = host.find(':') != std::string::npos;
+    req.set(http::field::host, (v6 ? "[" + host + "]" : host) + ":" + port);
     req.set(http::field::user_agent, "gearsph-client");
     for (const auto& [name, value] : headers) req.set(name, value);
     req.body() = body;

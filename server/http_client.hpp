@@ -31,7 +31,11 @@ struct SseEvent {
 
 struct Url {
   std::string host, port;
-  static Url parse(const std::string& url);  // http://host[:port][/]; throws otherwise
+  std::string base;  // the path before the API's own ("/api" behind a proxy), no trailing '/'
+  // http://host[:port][/base][/]; throws otherwise.
+  static Url parse(const std::string& url);
+  // "http://host:port" + base: what the API's paths follow.
+  std::string root() const;
 };
 
 class HttpClient {

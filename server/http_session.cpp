@@ -18,17 +18,13 @@ namespace {
 constexpr std::chrono::seconds kLinger{2};
 constexpr std::size_t kLingerBytes = 16 << 20;
 
-std::string format_event(const Event& e) {
-  return "id: " + std::to_string(e.id) + "\nevent: " + e.type + "\ndata: " + e.data + "\n\n";
-}
-
 }  // namespace
 
-HttpSession::HttpSession(tcp::socket&& socket, const Router& router, net::thread_pool& handler_pool)
+HttpSession::HttpSession(tcp::socket&& socket, const Router& router, HandlerPools pools)
     : stream_(std::move(socket)),
       router_(router),
       services_(router.services()),
-      handler_pool_(handler_pool),
+      pools_(pools),
       keepalive_(stream_.get_executor()) {
   ++services_.connections;
 }
@@ -96,6 +92,10 @@ void HttpSession::on_header(beast::error_code ec) {
                                      " bytes",
                                  ""));
   }
+  if (ec == http::error::bad_version) {
+    return refuse(problem::plain(http::status::http_version_not_supported,
+                                 "this server speaks HTTP/1.1 (and HTTP/1.0)", ""));
+  }
   if (ec) {
     return refuse(problem::plain(http::status::bad_request,
                                  "the request is not valid HTTP/1.1: " + ec.message(), ""));
@@ -149,25 +149,29 @@ void HttpSession::dispatch() {
   auto req = std::make_shared<Request>();
   req->msg = parser_->release();
   Router::Match match = router_.match(*req);
-  if (!match.slow()) {
+  const Lane lane = match.lane();
+  if (lane == Lane::io) {
     send(req, router_.respond(*req, std::move(match)));
     return;
   }
-  // Handlers that may block run on the handler pool; the answer comes back
-  // to this connection's strand.
-  net::post(handler_pool_, [self = shared_from_this(), ex = stream_.get_executor(), req,
-                            m = std::move(match)]() mutable {
+  // Handlers that may block run on their pool; the answer comes back to
+  // this connection's strand.
+  net::thread_pool& pool = lane == Lane::store ? pools_.store : pools_.slow;
+  net::post(pool, [self = shared_from_this(), ex = stream_.get_executor(), req,
+                   m = std::move(match)]() mutable {
     Response res = self->router_.respond(*req, std::move(m));
     net::post(ex, [self, req, r = std::move(res)]() mutable { self->send(req, std::move(r)); });
   });
 }
 
 void HttpSession::send(std::shared_ptr<Request> req, Response res) {
-  const bool keep_alive = req->msg.keep_alive() && !services_.stopping;
+  // An HTTP/1.0 client gets one answer per connection.
+  const bool keep_alive = req->msg.version() >= 11 && req->msg.keep_alive() && !services_.stopping;
   std::visit(
       [&](auto& m) {
         using M = std::decay_t<decltype(m)>;
         if constexpr (std::is_same_v<M, EventStream>) {
+          chunked_ = req->msg.version() >= 11;
           start_events(std::move(m));
         } else {
           m.keep_alive(keep_alive);
@@ -250,23 +254,22 @@ void HttpSession::close() {
 void HttpSession::start_events(EventStream es) {
   job_filter_ = es.job_id;
   EventHub& hub = services_.hub;
-  // Subscribe before looking at the state, so nothing falls in between.
   subscription_ =
       hub.subscribe(job_filter_, [weak = weak_from_this(), ex = stream_.get_executor()] {
         net::post(ex, [weak] {
           if (auto self = weak.lock()) self->pump();
         });
       });
-  const std::uint64_t now = hub.last_id();
-  const bool resume = es.last_event_id && *es.last_event_id <= now;
-  last_id_ = resume ? *es.last_event_id : now;
-  pending_ = "retry: 3000\n\n";
-  // A job's stream starts with its status, unless the client resumes it.
-  if (!job_filter_.empty() && !resume) pending_ += snapshot_event();
+  // The handler chose where to start (events published since are still in
+  // the hub's ring: the first pump finds them).
+  last_id_ = es.after;
+  pending_ = "retry: 3000\n\n" + es.first;
+  final_snapshot_ = es.final;
 
   auto head = std::make_shared<http::response<http::empty_body>>(std::move(es.head));
   head->keep_alive(false);
-  head->chunked(true);
+  // HTTP/1.0 has no chunks: the stream is the body, ended by closing.
+  head->chunked(chunked_);
   auto sr = std::make_shared<http::response_serializer<http::empty_body>>(*head);
   stream_.expires_after(services_.config.timeouts.write);
   // The hub may post pump() while the header is on its way: it must wait,
@@ -282,41 +285,68 @@ void HttpSession::start_events(EventStream es) {
       });
 }
 
-std::string HttpSession::snapshot_event() {
-  const auto job = services_.store.job(job_filter_);
-  if (!job) return {};
-  final_snapshot_ = is_terminal_status(job->status);
-  Event e;
-  e.id = last_id_;
-  e.type = "status";
-  e.data = services_.status_of(*job).dump();
-  return format_event(e);
+void HttpSession::resnapshot() {
+  // The job's status is read from the store, off the I/O threads; the
+  // stream goes on from the hub's position before the read.
+  refreshing_ = true;
+  net::post(pools_.store, [self = shared_from_this(), ex = stream_.get_executor()] {
+    Services& s = self->services_;
+    const std::uint64_t now = s.hub.last_id();
+    std::string text;
+    bool final = false;
+    try {
+      if (const auto job = s.store.job(self->job_filter_)) {
+        Event e;
+        e.id = now;
+        e.type = "status";
+        e.data = s.status_of(*job).dump();
+        text = sse_text(e);
+        final = is_terminal_status(job->status);
+      }
+    } catch (const std::exception&) {
+      // The store is away: the stream goes on without the snapshot.
+    }
+    net::post(ex, [self, now, text = std::move(text), final] {
+      self->refreshing_ = false;
+      self->pending_ += text;
+      self->last_id_ = now;
+      self->final_snapshot_ = self->final_snapshot_ || final;
+      self->pump();
+    });
+  });
 }
 
 void HttpSession::pump() {
-  if (closed_ || writing_) return;
+  if (closed_ || writing_ || refreshing_) return;
   EventHub& hub = services_.hub;
   std::string text = std::move(pending_);
   pending_.clear();
   bool last = false;
+  if (final_snapshot_) {
+    // The job had finished already: its final status is all there is to send.
+    write_events(std::move(text), true);
+    return;
+  }
   const EventHub::Batch batch = hub.after(last_id_, job_filter_, 256);
   if (batch.gap) {
-    // Events were dropped before this stream got them.
-    if (job_filter_.empty()) {
-      text += "event: reset\ndata: {}\n\n";
-    } else {
-      text += snapshot_event();
-    }
+    // Events were dropped before this stream got them. Nothing older than
+    // what replaces them may follow: a job's stream gets its status anew,
+    // the stream of all jobs a reset (the client fetches /jobs again).
+    pending_ = std::move(text);
+    if (!job_filter_.empty()) return resnapshot();
+    const std::uint64_t now = hub.last_id();
+    pending_ += "id: " + std::to_string(now) + "\nevent: reset\ndata: {}\n\n";
+    last_id_ = now;
+    return pump();
   }
   last_id_ = batch.seen;
   for (const Event& e : batch.events) {
-    text += format_event(e);
+    text += sse_text(e);
     if (e.terminal && !job_filter_.empty()) {
       last = true;  // a job's stream ends with its final status
       break;
     }
   }
-  if (final_snapshot_) last = true;  // the job had finished already
   if (hub.closed() && batch.events.empty()) last = true;
   if (text.empty() && !last) return;
   write_events(std::move(text), last);
@@ -325,12 +355,16 @@ void HttpSession::pump() {
 void HttpSession::write_events(std::string text, bool last) {
   writing_ = true;
   chunk_.clear();
-  if (!text.empty()) {
-    char size[20];
-    std::snprintf(size, sizeof size, "%zx\r\n", text.size());
-    chunk_ = size + text + "\r\n";
+  if (!chunked_) {
+    chunk_ = std::move(text);
+  } else {
+    if (!text.empty()) {
+      char size[20];
+      std::snprintf(size, sizeof size, "%zx\r\n", text.size());
+      chunk_ = size + text + "\r\n";
+    }
+    if (last) chunk_ += "0\r\n\r\n";
   }
-  if (last) chunk_ += "0\r\n\r\n";
   stream_.expires_after(services_.config.timeouts.write);
   net::async_write(stream_, net::buffer(chunk_),
                    [self = shared_from_this(), last](beast::error_code ec, std::size_t) {

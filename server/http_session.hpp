@@ -19,10 +19,15 @@
 
 namespace gearsph::server {
 
+// The threads handlers run on, by lane (the I/O lane is the session's own).
+struct HandlerPools {
+  boost::asio::thread_pool& store;
+  boost::asio::thread_pool& slow;
+};
+
 class HttpSession : public std::enable_shared_from_this<HttpSession> {
  public:
-  HttpSession(boost::asio::ip::tcp::socket&& socket, const Router& router,
-              boost::asio::thread_pool& handler_pool);
+  HttpSession(boost::asio::ip::tcp::socket&& socket, const Router& router, HandlerPools pools);
   ~HttpSession();
   HttpSession(const HttpSession&) = delete;
   HttpSession& operator=(const HttpSession&) = delete;
@@ -58,14 +63,14 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void write_events(std::string text, bool last);
   void arm_keepalive();
   void watch_for_close();
-  std::string snapshot_event();
+  void resnapshot();
 
   boost::beast::tcp_stream stream_;
   boost::beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::string_body>> parser_;
   const Router& router_;
   Services& services_;
-  boost::asio::thread_pool& handler_pool_;
+  HandlerPools pools_;
   bool first_request_ = true;
   bool closed_ = false;
   std::array<char, 4096> sink_{};
@@ -77,7 +82,9 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   std::string pending_;  // text to send before the next events
   std::string chunk_;    // the chunk being written
   bool writing_ = false;
+  bool chunked_ = true;          // false for an HTTP/1.0 client: the events end with the connection
   bool final_snapshot_ = false;  // the status sent first was already final
+  bool refreshing_ = false;      // a status snapshot is being read from the store
   boost::asio::steady_timer keepalive_;
 };
 

@@ -106,6 +106,14 @@ std::vector<std::string> Request::query_values(std::string_view name) const {
   return out;
 }
 
+bool wants_html(const Request& req) {
+  const std::string accept = req.header(http::field::accept);
+  if (req.query_value("f") == std::optional<std::string>("json")) return false;
+  if (req.query_value("f") == std::optional<std::string>("html")) return true;
+  // A browser asks for text/html first; curl and programs send */* or JSON.
+  return accept.find("text/html") != std::string::npos;
+}
+
 StringResponse text_response(http::status status, std::string body, std::string content_type) {
   StringResponse res{status, 11};
   res.set(http::field::content_type, content_type);

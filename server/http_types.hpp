@@ -28,6 +28,9 @@ struct EventStream {
   http::response<http::empty_body> head;
   std::string job_id;                          // empty: every job
   std::optional<std::uint64_t> last_event_id;  // from the Last-Event-ID header
+  std::uint64_t after = 0;                     // stream the hub's events after this id
+  std::string first;                           // sent before them (a status snapshot, a reset)
+  bool final = false;                          // `first` is the job's final status: then end
 };
 
 using Response = std::variant<StringResponse, FileResponse, EventStream>;
@@ -50,6 +53,10 @@ struct Request {
 bool parse_target(std::string_view target, Request& out);
 std::optional<std::string> percent_decode(std::string_view s, bool plus_is_space);
 std::string percent_encode(std::string_view s);  // for query values in links
+
+// A browser's page load (Accept: text/html, or ?f=html) rather than a
+// program (*/*, JSON, or ?f=json).
+bool wants_html(const Request& req);
 
 StringResponse text_response(http::status status, std::string body, std::string content_type);
 StringResponse json_response(http::status status, const nlohmann::json& body);

@@ -1,7 +1,7 @@
 #pragma once
 // The hook through which the application plugs a renderer into
-// GET /jobs/{id}/images/{field}.png. The server caches what it returns in
-// the job directory; without a provider the endpoint answers 501.
+// GET /jobs/{id}/images/{field}.png. The server keeps what it returns in a
+// bounded cache in memory; without a provider the endpoint answers 501.
 #include <array>
 #include <cstdint>
 #include <filesystem>

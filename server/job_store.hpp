@@ -101,6 +101,11 @@ struct SubmitResult {
 struct JobQuery {
   std::vector<JobStatus> statuses;  // empty: any
   std::string study_id;             // non-empty: that study's jobs, in study order
+  // Created within [created_from, created_to] (the store's ISO 8601 UTC
+  // form, "" for an open end).
+  std::string created_from, created_to;
+  // A run's wall time wall_s (0 until it runs) within these bounds (< 0: none).
+  double min_wall_s = -1, max_wall_s = -1;
   std::int64_t limit = 50;
   std::int64_t offset = 0;  // newest first, unless study_id is given
 };

@@ -164,6 +164,22 @@ class SqlJobStore : public JobStore {
       where += " AND study_id = ?";
       params.push_back(q.study_id);
     }
+    if (!q.created_from.empty()) {
+      where += " AND created >= ?";
+      params.push_back(q.created_from);
+    }
+    if (!q.created_to.empty()) {
+      where += " AND created <= ?";
+      params.push_back(q.created_to);
+    }
+    if (q.min_wall_s >= 0) {
+      where += " AND wall_s >= ?";
+      params.push_back(q.min_wall_s);
+    }
+    if (q.max_wall_s >= 0) {
+      where += " AND wall_s <= ?";
+      params.push_back(q.max_wall_s);
+    }
     auto db = db_->connect();
     JobPage page;
     page.total = db->query("SELECT COUNT(*) FROM jobs" + where, params).front().int64(0);

@@ -13,12 +13,12 @@ namespace net = boost::asio;
 using tcp = net::ip::tcp;
 
 Listener::Listener(net::io_context& ioc, const tcp::endpoint& endpoint, const Router& router,
-                   net::thread_pool& handler_pool)
+                   HandlerPools pools)
     : ioc_(ioc),
       acceptor_(net::make_strand(ioc)),
       retry_(acceptor_.get_executor()),
       router_(router),
-      handler_pool_(handler_pool) {
+      pools_(pools) {
   acceptor_.open(endpoint.protocol());
   acceptor_.set_option(net::socket_base::reuse_address(true));
   acceptor_.bind(endpoint);
@@ -56,7 +56,7 @@ void Listener::accept() {
           });
           return;
         }
-        std::make_shared<HttpSession>(std::move(socket), self->router_, self->handler_pool_)->run();
+        std::make_shared<HttpSession>(std::move(socket), self->router_, self->pools_)->run();
         self->accept();
       });
 }

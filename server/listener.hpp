@@ -7,6 +7,7 @@
 #include <boost/asio/steady_timer.hpp>
 #include <boost/asio/thread_pool.hpp>
 
+#include "server/http_session.hpp"
 #include "server/router.hpp"
 
 namespace gearsph::server {
@@ -15,7 +16,7 @@ class Listener : public std::enable_shared_from_this<Listener> {
  public:
   // Binds and listens at once (throws if the address is taken).
   Listener(boost::asio::io_context& ioc, const boost::asio::ip::tcp::endpoint& endpoint,
-           const Router& router, boost::asio::thread_pool& handler_pool);
+           const Router& router, HandlerPools pools);
   unsigned short port() const;
   void run();
   void stop();  // no more connections; thread-safe
@@ -27,7 +28,7 @@ class Listener : public std::enable_shared_from_this<Listener> {
   boost::asio::ip::tcp::acceptor acceptor_;
   boost::asio::steady_timer retry_;
   const Router& router_;
-  boost::asio::thread_pool& handler_pool_;
+  HandlerPools pools_;
 };
 
 }  // namespace gearsph::server

@@ -21,6 +21,7 @@ inline constexpr const char* kResultNotReady =
     "http://www.opengis.net/def/exceptions/ogcapi-processes-1/1.0/result-not-ready";
 inline constexpr const char* kInvalidJob = "urn:gearsph:problem:invalid-job";
 inline constexpr const char* kMalformedJson = "urn:gearsph:problem:malformed-json";
+inline constexpr const char* kNumberOutOfRange = "urn:gearsph:problem:number-out-of-range";
 inline constexpr const char* kJobTooLarge = "urn:gearsph:problem:job-too-large";
 inline constexpr const char* kIdempotencyConflict = "urn:gearsph:problem:idempotency-key-reused";
 inline constexpr const char* kJobFailed = "urn:gearsph:problem:job-failed";

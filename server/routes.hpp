@@ -8,6 +8,7 @@ namespace gearsph::server::routes {
 
 // routes_service.cpp: the service's description of itself
 Response landing(Services&, Request&);
+Response api_definition(Services&, Request&);  // GET /api: the OpenAPI document
 Response conformance(Services&, Request&);
 Response health(Services&, Request&);
 Response schema(Services&, Request&);
@@ -29,6 +30,11 @@ Response image(Services&, Request&);
 // routes_events.cpp
 Response job_events(Services&, Request&);
 Response all_events(Services&, Request&);
+
+// routes_login.cpp: the cookie a browser carries instead of the token
+Response login_state(Services&, Request&);
+Response login(Services&, Request&);
+Response logout(Services&, Request&);
 
 // routes_studies.cpp
 Response create_study(Services&, Request&);

@@ -1,5 +1,11 @@
-// Server-Sent Events: the handler only checks the request and hands the
-// connection to the session, which streams from the event hub.
+// Server-Sent Events: the handler decides where a stream starts (a status
+// snapshot, or after the client's Last-Event-ID) and hands the connection
+// to the session, which streams from the event hub.
+//
+// A job's status never goes backwards on its stream: a client that resumes
+// gets the events after its last one if the hub still holds them all, and
+// otherwise the current status, as the event the hub was at when the
+// status was read, and only what came after it.
 #include <charconv>
 
 #include "server/problem.hpp"
@@ -27,7 +33,11 @@ EventStream start(const Request& req, std::string job_id) {
 
 Response job_events(Services& s, Request& req) {
   const std::string& id = req.param("id");
-  if (!is_id(id) || !s.store.job(id)) {
+  // The hub's position before the status is read: whatever happens after
+  // the read has a later id and is streamed.
+  const std::uint64_t now = s.hub.last_id();
+  const auto job = is_id(id) ? s.store.job(id) : std::nullopt;
+  if (!job) {
     problem::Problem p;
     p.status = http::status::not_found;
     p.type = problem::kNoSuchJob;
@@ -36,11 +46,45 @@ Response job_events(Services& s, Request& req) {
     p.instance = req.path;
     return problem::make(p);
   }
-  return start(req, id);
+  EventStream es = start(req, id);
+  const bool finished = is_terminal_status(job->status);
+  if (es.last_event_id) {
+    const EventHub::Resume r = s.hub.resume(*es.last_event_id, id);
+    if (r.complete) {
+      if (finished && !r.final_status_ahead) {
+        // The client has seen the final status: nothing more will come.
+        // 204 also tells a browser's EventSource to stop reconnecting.
+        StringResponse done{http::status::no_content, 11};
+        done.set(http::field::cache_control, "no-cache");
+        return done;
+      }
+      es.after = *es.last_event_id;
+      return es;
+    }
+  }
+  Event snapshot;
+  snapshot.id = now;
+  snapshot.type = "status";
+  snapshot.data = s.status_of(*job).dump();
+  es.first = sse_text(snapshot);
+  es.final = finished;
+  es.after = now;
+  return es;
 }
 
-Response all_events(Services&, Request& req) {
-  return start(req, "");
+Response all_events(Services& s, Request& req) {
+  EventStream es = start(req, "");
+  const std::uint64_t now = s.hub.last_id();
+  es.after = now;
+  if (es.last_event_id) {
+    if (s.hub.resume(*es.last_event_id, "").complete) {
+      es.after = *es.last_event_id;
+    } else {
+      // Events were missed: the client fetches /jobs again.
+      es.first = "id: " + std::to_string(now) + "\nevent: reset\ndata: {}\n\n";
+    }
+  }
+  return es;
 }
 
 }  // namespace gearsph::server::routes

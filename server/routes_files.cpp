@@ -37,6 +37,13 @@ std::optional<JobRecord> find_job(Services& s, const Request& req) {
   return s.store.job(req.param("id"));
 }
 
+// A dismissed job's files are deleted (once its run has stopped): none is
+// listed or served meanwhile.
+StringResponse dismissed(const Request& req, const JobRecord& job) {
+  return problem::plain(http::status::not_found,
+                        "job " + job.id + " was dismissed; its files are deleted", req.path);
+}
+
 bool is_field_name(std::string_view f) {
   return !f.empty() && f.size() <= 64 && std::all_of(f.begin(), f.end(), [](char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
@@ -57,26 +64,12 @@ std::string short_number(double v) {
   return buf;
 }
 
-// Written beside its final name, then renamed: a reader never sees half an image.
-void write_atomically(const std::filesystem::path& file, const std::string& bytes) {
-  const auto tmp = file.parent_path() / ("." + file.filename().string() + "." + new_id() + ".tmp");
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    out << bytes;
-    if (!out) {
-      std::error_code ec;
-      std::filesystem::remove(tmp, ec);
-      throw std::runtime_error("cannot write " + tmp.string());
-    }
-  }
-  std::filesystem::rename(tmp, file);
-}
-
 }  // namespace
 
 Response files(Services& s, Request& req) {
   const auto record = find_job(s, req);
   if (!record) return no_such_job(req);
+  if (record->status == JobStatus::dismissed) return dismissed(req, *record);
   nlohmann::json list = nlohmann::json::array();
   for (const FileEntry& f : list_files(s.job_dir(record->id))) {
     list.push_back({{"name", f.name},
@@ -90,6 +83,7 @@ Response files(Services& s, Request& req) {
 Response file(Services& s, Request& req) {
   const auto record = find_job(s, req);
   if (!record) return no_such_job(req);
+  if (record->status == JobStatus::dismissed) return dismissed(req, *record);
   const std::string& name = req.param("name");
   // Only a name the directory listing shows: no "..", no "/", no links.
   const auto path = find_listed_file(s.job_dir(record->id), name);
@@ -119,7 +113,7 @@ Response image(Services& s, Request& req) {
   }
   ImageRequest ir;
   ir.field = image.substr(0, image.size() - suffix.size());
-  std::string cache = "image-" + ir.field;
+  std::string cache = record->id + "/" + ir.field;
   if (auto f = req.query_value("frame")) {
     std::int64_t frame = -1;
     const auto [end, ec] = std::from_chars(f->data(), f->data() + f->size(), frame);
@@ -127,9 +121,9 @@ Response image(Services& s, Request& req) {
       return bad_parameter(req, "frame is a whole number, 0 or more");
     }
     ir.frame = frame;
-    cache += "-frame" + std::to_string(frame);
+    cache += "?frame=" + std::to_string(frame);
   } else {
-    cache += "-last";
+    cache += "?last";
   }
   if (auto z = req.query_value("zoom")) {
     std::array<double, 4> box{};
@@ -148,10 +142,9 @@ Response image(Services& s, Request& req) {
       return bad_parameter(req, "zoom is x0,y0,x1,y1 in metres with x0 < x1 and y0 < y1");
     }
     ir.zoom_m = box;
-    cache += "-zoom" + short_number(box[0]) + "_" + short_number(box[1]) + "_" +
-             short_number(box[2]) + "_" + short_number(box[3]);
+    cache += "&zoom=" + short_number(box[0]) + "," + short_number(box[1]) + "," +
+             short_number(box[2]) + "," + short_number(box[3]);
   }
-  cache += suffix;
 
   if (!s.config.image_provider) {
     problem::Problem p;
@@ -172,17 +165,23 @@ Response image(Services& s, Request& req) {
     p.instance = req.path;
     return problem::make(p);
   }
-  const auto dir = s.job_dir(record->id);
-  if (auto cached = find_listed_file(dir, cache)) return serve_file(req, *cached, "image/png");
-  const ImageResult r = s.config.image_provider(dir, ir);
+  // A finished job's results do not change: neither do its images.
+  auto answer = [](const std::string& png) {
+    StringResponse res = text_response(http::status::ok, png, "image/png");
+    res.set(http::field::cache_control, "private, max-age=3600");
+    return res;
+  };
+  if (const auto cached = s.images.get(cache)) return answer(*cached);
+  ImageResult r = s.config.image_provider(s.job_dir(record->id), ir);
   if (r.status != 200) {
     const bool error_status = r.status >= 400 && r.status <= 599;
     return problem::plain(
         error_status ? static_cast<http::status>(r.status) : http::status::internal_server_error,
         r.detail.empty() ? "the image could not be rendered" : r.detail, req.path);
   }
-  write_atomically(dir / cache, r.png);
-  return text_response(http::status::ok, r.png, "image/png");
+  StringResponse res = answer(r.png);
+  s.images.put(cache, std::move(r.png));
+  return res;
 }
 
 }  // namespace gearsph::server::routes

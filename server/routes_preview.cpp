@@ -34,8 +34,10 @@ double rounded(double v, double quantum) {
   return std::round(v / quantum) * quantum;
 }
 
-// Particle-steps per second of this server's recent successful jobs.
-nlohmann::json speed_estimate(Services& s, double particle_steps) {
+// The run time: the particle-steps at the speed of this server's recent
+// successful jobs (their output time taken off), plus the time to write
+// this job's frames and histories.
+nlohmann::json run_time_estimate(Services& s, const JobEstimate& estimate) {
   JobQuery q;
   q.statuses = {JobStatus::successful};
   q.limit = kSpeedSampleJobs;
@@ -43,30 +45,39 @@ nlohmann::json speed_estimate(Services& s, double particle_steps) {
   int used = 0;
   for (const JobRecord& j : s.store.jobs(q).jobs) {
     if (j.wall_s < kMinSampleWall_s || j.steps <= 0 || j.particles <= 0) continue;
+    const auto job = nlohmann::json::parse(j.job_json, nullptr, false);
+    const double output = job.is_object() ? output_seconds_of(job, j.particles, j.steps) : 0.0;
+    // A run that mostly wrote output says little about computing: its
+    // compute time is taken as at least a tenth of its wall time.
     work += static_cast<double>(j.particles) * static_cast<double>(j.steps);
-    wall += j.wall_s;
+    wall += std::max(j.wall_s - output, 0.1 * j.wall_s);
     ++used;
   }
   const bool measured = used > 0 && wall > 0 && work > 0;
   const double speed = measured ? work / wall : kFallbackParticleStepsPerSecond;
+  const double compute_s = estimate.particle_steps / speed;
   nlohmann::json e = {
-      {"wall_s", particle_steps / speed},
+      {"wall_s", compute_s + estimate.output_s},
+      {"compute_s", compute_s},
+      {"output_s", estimate.output_s},
       {"particle_steps_per_s", speed},
       {"basis", measured ? "measured" : "fallback"},
       {"jobs_measured", used},
       {"threads_per_job", s.config.threads_per_job},
   };
-  char note[256];
+  char note[320];
   if (measured) {
     std::snprintf(note, sizeof note,
                   "estimate: %.3g particle-steps per second, the mean of this server's last %d "
-                  "successful job%s; time in the queue not included",
-                  speed, used, used == 1 ? "" : "s");
+                  "successful job%s, plus writing %lld frames and the histories; time in the "
+                  "queue not included",
+                  speed, used, used == 1 ? "" : "s", static_cast<long long>(estimate.frames));
   } else {
     std::snprintf(note, sizeof note,
                   "estimate: %.3g particle-steps per second, a figure measured on a 2-core "
-                  "machine; this server has no finished job of 1 s or more to measure yet",
-                  speed);
+                  "machine (this server has no finished job of 1 s or more to measure yet), "
+                  "plus writing %lld frames and the histories",
+                  speed, static_cast<long long>(estimate.frames));
   }
   e["note"] = note;
   return e;
@@ -127,7 +138,7 @@ nlohmann::json describe(Services& s, const PreparedJob& job, const JobEstimate& 
       {"bounds_m", {x0, y0, x1, y1}},
       {"outlines", std::move(outlines)},
       {"model", job.scene.description},
-      {"run_time", speed_estimate(s, estimate.particle_steps)},
+      {"run_time", run_time_estimate(s, estimate)},
       {"job", job.job},
   };
   if (p.n <= kMaxListedParticles) {

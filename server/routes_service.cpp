@@ -1,5 +1,6 @@
 // The service describing itself: landing page, conformance, health, the job
 // schema and the one process (OGC API - Processes).
+#include "server/openapi.hpp"
 #include "server/problem.hpp"
 #include "server/routes.hpp"
 #include "server/static_files.hpp"
@@ -9,13 +10,7 @@ namespace gearsph::server::routes {
 
 namespace {
 
-bool wants_html(const Request& req) {
-  const std::string accept = req.header(http::field::accept);
-  if (req.query_value("f") == std::optional<std::string>("json")) return false;
-  if (req.query_value("f") == std::optional<std::string>("html")) return true;
-  // A browser asks for text/html first; curl and programs send */* or JSON.
-  return accept.find("text/html") != std::string::npos;
-}
+constexpr const char* kOpenApiType = "application/vnd.oai.openapi+json;version=3.0";
 
 nlohmann::json process_summary() {
   return {{"id", kProcessId},
@@ -26,7 +21,7 @@ nlohmann::json process_summary() {
            "results.xmf."},
           {"version", version()},
           {"jobControlOptions", {"async-execute", "dismiss"}},
-          {"outputTransmission", {"reference"}},
+          {"outputTransmission", {"value", "reference"}},
           {"links",
            {link(std::string("/processes/") + kProcessId, "self", "application/json",
                  "process description"),
@@ -49,6 +44,7 @@ Response landing(Services& s, Request& req) {
        {"version", version()},
        {"links",
         {link("/", "self", "application/json", "this document"),
+         link("/api", "service-desc", kOpenApiType, "the API definition (OpenAPI 3.0)"),
          link("/conformance", "http://www.opengis.net/def/rel/ogc/1.0/conformance",
               "application/json", "conformance classes"),
          link("/processes", "http://www.opengis.net/def/rel/ogc/1.0/processes", "application/json",
@@ -60,12 +56,25 @@ Response landing(Services& s, Request& req) {
          link("/events", "alternate", "text/event-stream", "events of all jobs")}}});
 }
 
+Response api_definition(Services&, Request&) {
+  // The document as written, with this build's version.
+  static const std::string text = [] {
+    nlohmann::json doc = nlohmann::json::parse(openapi_document());
+    doc["info"]["version"] = version();
+    return doc.dump(1) + "\n";
+  }();
+  StringResponse res = text_response(http::status::ok, text, kOpenApiType);
+  res.set(http::field::cache_control, "no-cache");
+  return res;
+}
+
 Response conformance(Services&, Request&) {
   return json_response(http::status::ok,
                        {{"conformsTo",
                          {"http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/core",
                           "http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/json",
                           "http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/job-list",
+                          "http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/oas30",
                           "http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/dismiss"}}});
 }
 
@@ -75,12 +84,13 @@ Response health(Services& s, Request&) {
   return json_response(http::status::ok, {{"status", "ok"},
                                           {"version", version()},
                                           {"uptime_s", uptime},
-                                          {"queue", s.store.count_by_status()},
+                                          {"queue", s.queue_counts()},
                                           {"workers", s.config.workers},
                                           {"threads_per_job", s.config.threads_per_job},
                                           {"running_here", s.workers.running()},
                                           {"connections", s.connections.load()},
                                           {"event_streams", s.hub.subscribers()},
+                                          {"image_cache", s.images.stats()},
                                           {"requests", s.requests.load()}});
 }
 
@@ -117,15 +127,21 @@ Response process(Services&, Request& req) {
         {"minOccurs", 1},
         {"maxOccurs", 1},
         {"schema", job_schema()}}}};
-  d["outputs"] = {{"summary",
-                   {{"title", "Summary numbers"},
-                    {"schema", {{"type", "object"}, {"contentMediaType", "application/json"}}}}},
-                  {"history",
-                   {{"title", "Time histories"},
-                    {"schema", {{"type", "string"}, {"contentMediaType", "text/csv"}}}}},
-                  {"results",
-                   {{"title", "Particle snapshots (HDF5, with an XDMF sidecar for ParaView)"},
-                    {"schema", {{"type", "string"}, {"contentMediaType", "application/x-hdf5"}}}}}};
+  // In GET /jobs/{id}/results under these ids: summary as a value, the
+  // others as links.
+  d["outputs"] = {
+      {"summary",
+       {{"title", "Summary numbers"},
+        {"description", "summary.json: peak stresses and where, forces, stability, energy drift"},
+        {"schema", {{"type", "object"}, {"contentMediaType", "application/json"}}}}},
+      {"history",
+       {{"title", "Time histories"},
+        {"description", "history.csv, by reference"},
+        {"schema", {{"type", "string"}, {"contentMediaType", "text/csv"}}}}},
+      {"results",
+       {{"title", "Particle snapshots (HDF5, with an XDMF sidecar for ParaView)"},
+        {"description", "results.h5, by reference; results.xmf is among the job's files"},
+        {"schema", {{"type", "string"}, {"contentMediaType", "application/x-hdf5"}}}}}};
   return json_response(http::status::ok, d);
 }
 

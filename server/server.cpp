@@ -68,7 +68,9 @@ std::unique_ptr<Dispatcher> make_dispatcher(const ServerConfig& c, JobStore& sto
 Server::Server(ServerConfig config)
     : config_(std::move(config)),
       handler_pool_(static_cast<std::size_t>(std::max(1, config_.handler_threads))),
-      signals_(ioc_, SIGINT, SIGTERM) {
+      store_pool_(static_cast<std::size_t>(std::max(1, config_.store_threads))),
+      signals_(ioc_, SIGINT, SIGTERM),
+      counts_timer_(ioc_) {
   std::filesystem::create_directories(results_dir_of(config_));
   if (shared_store(config_)) {
     // Many API nodes may share the store; the data directory is theirs alone.
@@ -94,22 +96,34 @@ Server::Server(ServerConfig config)
     watcher_ = std::make_unique<StoreWatcher>(*store_, hub_, *workers_, wo);
   }
   services_ = std::make_unique<Services>(config_, *store_, *workers_, hub_);
+  services_->refresh_queue_counts();
   router_ = std::make_unique<Router>(*services_);
   boost::system::error_code ec;
   const auto address = net::ip::make_address(config_.bind, ec);
   if (ec) throw std::runtime_error("--bind " + config_.bind + " is not an IP address");
   try {
     listener_ = std::make_shared<Listener>(ioc_, net::ip::tcp::endpoint(address, config_.port),
-                                           *router_, handler_pool_);
+                                           *router_, HandlerPools{store_pool_, handler_pool_});
   } catch (const boost::system::system_error& e) {
     throw std::runtime_error("cannot listen on " + config_.bind + ":" +
                              std::to_string(config_.port) + ": " + e.code().message());
   }
+  services_->port = listener_->port();
 }
 
 Server::~Server() {
   handler_pool_.join();
+  store_pool_.join();
   if (lock_fd_ >= 0) ::close(lock_fd_);
+}
+
+void Server::refresh_counts_every_second() {
+  counts_timer_.expires_after(std::chrono::seconds(1));
+  counts_timer_.async_wait([this](boost::system::error_code ec) {
+    if (ec) return;
+    net::post(store_pool_, [this] { services_->refresh_queue_counts(); });
+    refresh_counts_every_second();
+  });
 }
 
 void Server::stop() {
@@ -129,6 +143,7 @@ void Server::run() {
   workers_->start();
   if (watcher_) watcher_->start();
   listener_->run();
+  refresh_counts_every_second();
   std::vector<std::thread> io;
   for (int i = 0; i < std::max(1, config_.io_threads); ++i) io.emplace_back([this] { ioc_.run(); });
 
@@ -148,9 +163,11 @@ void Server::run() {
   }
   boost::system::error_code ignored;
   signals_.cancel(ignored);
+  counts_timer_.cancel();
   ioc_.stop();
   for (std::thread& t : io) t.join();
   handler_pool_.join();
+  store_pool_.join();
   std::fprintf(stderr, "gearsph serve: stopped\n");
 }
 

@@ -8,6 +8,7 @@
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/signal_set.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <boost/asio/thread_pool.hpp>
 
 #include "server/config.hpp"
@@ -38,6 +39,8 @@ class Server {
   void stop();  // thread-safe
 
  private:
+  void refresh_counts_every_second();
+
   ServerConfig config_;
   int lock_fd_ = -1;
   std::unique_ptr<JobStore> store_;
@@ -47,9 +50,11 @@ class Server {
   std::unique_ptr<Services> services_;
   std::unique_ptr<Router> router_;
   boost::asio::thread_pool handler_pool_;
+  boost::asio::thread_pool store_pool_;
   boost::asio::io_context ioc_;
   std::shared_ptr<Listener> listener_;
   boost::asio::signal_set signals_;
+  boost::asio::steady_timer counts_timer_;  // refreshes the queue counts /health shows
   std::mutex mutex_;
   std::condition_variable stop_wake_;
   bool stop_requested_ = false;

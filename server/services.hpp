@@ -5,6 +5,8 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <map>
+#include <mutex>
 
 #include <nlohmann/json.hpp>
 
@@ -12,25 +14,50 @@
 #include "server/dispatcher.hpp"
 #include "server/documents.hpp"
 #include "server/event_hub.hpp"
+#include "server/image_cache.hpp"
 #include "server/job_store.hpp"
 
 namespace gearsph::server {
 
 struct Services {
   Services(const ServerConfig& c, JobStore& s, Dispatcher& w, EventHub& h)
-      : config(c), store(s), workers(w), hub(h), jobs_dir(results_dir_of(c)) {}
+      : config(c),
+        store(s),
+        workers(w),
+        hub(h),
+        jobs_dir(results_dir_of(c)),
+        images(c.image_cache_bytes) {}
 
   const ServerConfig& config;
   JobStore& store;
   Dispatcher& workers;  // the worker pool, or the Slurm dispatcher
   EventHub& hub;
   std::filesystem::path jobs_dir;
+  ImageCache images;  // rendered images, outside the job directories
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
   std::atomic<int> connections{0};
   std::atomic<std::int64_t> requests{0};
-  std::atomic<bool> stopping{false};  // shutting down: no more keep-alive
+  std::atomic<bool> stopping{false};    // shutting down: no more keep-alive
+  std::atomic<unsigned short> port{0};  // the port listened on (known once bound)
 
   std::filesystem::path job_dir(const std::string& id) const { return jobs_dir / id; }
+
+  // Jobs by status as /health shows them: refreshed every second off the
+  // I/O threads, so a health check never waits for the store.
+  void refresh_queue_counts() {
+    std::map<std::string, std::int64_t> counts;
+    try {
+      counts = store.count_by_status();
+    } catch (const std::exception&) {
+      return;  // the store is away: keep the last counts
+    }
+    std::lock_guard<std::mutex> lock(counts_mutex_);
+    queue_counts_ = std::move(counts);
+  }
+  std::map<std::string, std::int64_t> queue_counts() const {
+    std::lock_guard<std::mutex> lock(counts_mutex_);
+    return queue_counts_;
+  }
   nlohmann::json status_of(const JobRecord& job) const {
     return status_document(job, workers.live(job.id));
   }
@@ -38,6 +65,10 @@ struct Services {
   void publish_status(const JobRecord& job) const {
     hub.publish(job.id, "status", status_of(job).dump(), is_terminal_status(job.status));
   }
+
+ private:
+  mutable std::mutex counts_mutex_;
+  std::map<std::string, std::int64_t> queue_counts_;
 };
 
 }  // namespace gearsph::server

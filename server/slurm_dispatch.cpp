@@ -431,6 +431,10 @@ void SlurmDispatcher::track() {
                                  (phase == SlurmPhase::ended ? " had ended" : " was cancelled"),
                              last);
       store_.forget_dispatch(job.id);
+      // What the run wrote goes with it (a DELETE later removes anything a
+      // cancelled run still wrote while it stopped).
+      std::error_code ec;
+      std::filesystem::remove_all(dir_of(job.id), ec);
       continue;
     }
     if (phase == SlurmPhase::queued) {

@@ -116,7 +116,8 @@ Response serve_file(const Request& req, const std::filesystem::path& file,
   return res;
 }
 
-std::optional<Response> serve_static(const Request& req, const std::filesystem::path& root) {
+std::optional<std::filesystem::path> find_static(const Request& req,
+                                                 const std::filesystem::path& root) {
   if (root.empty()) return std::nullopt;
   std::filesystem::path file = root;
   for (std::size_t i = 0; i < req.segments.size(); ++i) {
@@ -135,7 +136,13 @@ std::optional<Response> serve_static(const Request& req, const std::filesystem::
   if (ec) return std::nullopt;
   const auto rel = real_file.lexically_relative(real_root);
   if (rel.empty() || *rel.begin() == "..") return std::nullopt;
-  Response res = serve_file(req, real_file, content_type_for(real_file));
+  return real_file;
+}
+
+std::optional<Response> serve_static(const Request& req, const std::filesystem::path& root) {
+  const auto file = find_static(req, root);
+  if (!file) return std::nullopt;
+  Response res = serve_file(req, *file, content_type_for(*file));
   if (auto* f = std::get_if<FileResponse>(&res)) f->set(http::field::cache_control, "no-cache");
   return res;
 }

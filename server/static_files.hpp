@@ -36,5 +36,8 @@ Response serve_file(const Request& req, const std::filesystem::path& file,
 // The dashboard: "/" is index.html, other paths are files under root.
 // nullopt if there is no such file (the caller answers 404).
 std::optional<Response> serve_static(const Request& req, const std::filesystem::path& root);
+// The file serve_static would serve (inside root, links resolved).
+std::optional<std::filesystem::path> find_static(const Request& req,
+                                                 const std::filesystem::path& root);
 
 }  // namespace gearsph::server

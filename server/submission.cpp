@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <vector>
 
 #include "server/documents.hpp"
 #include "server/job_limits.hpp"
@@ -38,6 +39,79 @@ bool nested_too_deep(std::string_view text) {
   }
   return false;
 }
+
+// RFC 6901: '~' and '/' in a key are written ~0 and ~1.
+std::string pointer_token(const std::string& key) {
+  std::string out;
+  for (const char c : key) {
+    if (c == '~') {
+      out += "~0";
+    } else if (c == '/') {
+      out += "~1";
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// Follows the parse and, when it fails, knows the JSON pointer of the value
+// it was reading: for numbers too large for a double, which are valid JSON
+// but have no value here.
+class PointerAtError : public nlohmann::json_sax<nlohmann::json> {
+ public:
+  std::string pointer;  // of the value at the error
+  std::string token;    // the text of that value
+
+  bool null() override { return value_done(); }
+  bool boolean(bool) override { return value_done(); }
+  bool number_integer(number_integer_t) override { return value_done(); }
+  bool number_unsigned(number_unsigned_t) override { return value_done(); }
+  bool number_float(number_float_t, const string_t&) override { return value_done(); }
+  bool string(string_t&) override { return value_done(); }
+  bool binary(binary_t&) override { return value_done(); }
+  bool start_object(std::size_t) override {
+    stack_.push_back({false, 0, {}});
+    return true;
+  }
+  bool key(string_t& k) override {
+    stack_.back().key = k;
+    return true;
+  }
+  bool end_object() override {
+    stack_.pop_back();
+    return value_done();
+  }
+  bool start_array(std::size_t) override {
+    stack_.push_back({true, 0, {}});
+    return true;
+  }
+  bool end_array() override {
+    stack_.pop_back();
+    return value_done();
+  }
+  bool parse_error(std::size_t, const std::string& last_token,
+                   const nlohmann::detail::exception&) override {
+    for (const Frame& f : stack_) {
+      pointer.push_back('/');
+      pointer.append(f.array ? std::to_string(f.index) : pointer_token(f.key));
+    }
+    token = last_token;
+    return false;
+  }
+
+ private:
+  struct Frame {
+    bool array;
+    std::size_t index;
+    std::string key;
+  };
+  bool value_done() {
+    if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
+    return true;
+  }
+  std::vector<Frame> stack_;
+};
 
 bool is_json_media_type(std::string_view type) {
   const auto semi = type.find(';');
@@ -81,6 +155,20 @@ std::variant<nlohmann::json, StringResponse> read_json_body(const Request& req) 
       what = what.substr(bracket + 2);
     }
     p.detail = "the body is not valid JSON: " + what;
+    return problem::make(p);
+  } catch (const nlohmann::json::out_of_range&) {
+    // A number beyond the range of a double (about 1.8e308): valid JSON,
+    // but no value here can hold it. Where is it?
+    PointerAtError where;
+    nlohmann::json::sax_parse(body, &where);
+    std::string token = where.token;
+    if (token.size() > 40) token = token.substr(0, 37) + "...";
+    const std::string detail =
+        "the number " + token + " is out of range: numbers must lie within +-1.8e308 (a double)";
+    p.type = problem::kNumberOutOfRange;
+    p.title = "Number out of range";
+    p.detail = detail;
+    p.extra["errors"] = {{{"pointer", where.pointer}, {"detail", detail}}};
     return problem::make(p);
   }
 }

@@ -268,6 +268,11 @@ void WorkerPool::run(const JobRecord& job) {
     }
   }
   const auto record = store_.job(job.id);
+  if (record && record->status == JobStatus::dismissed) {
+    // Dismissed while it ran: what the run wrote goes, now that it has stopped.
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+  }
   std::fprintf(stderr, "%s: job %s %s: %s\n", options_.log_name.c_str(), job.id.c_str(),
                record ? std::string(to_string(record->status)).c_str() : "?",
                record ? record->message.c_str() : "");

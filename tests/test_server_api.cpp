@@ -259,9 +259,11 @@ TEST_F(ServerApi, PathTraversalIsRefused) {
   }
   // Targets that are not even paths.
   for (const std::string t : {"http://example.com/etc/passwd", "*", "etc/passwd"}) {
-    const std::string answer = raw_exchange(
-        server_->host(), server_->port(),
-        "GET " + t + " HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n", std::chrono::seconds(5));
+    const std::string answer =
+        raw_exchange(server_->host(), server_->port(),
+                     "GET " + t + " HTTP/1.1\r\nHost: 127.0.0.1:" + server_->port() +
+                         "\r\nConnection: close\r\n\r\n",
+                     std::chrono::seconds(5));
     EXPECT_EQ(answer.rfind("HTTP/1.1 400", 0), 0u) << t << ": " << answer.substr(0, 40);
   }
 }

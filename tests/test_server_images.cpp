@@ -1,7 +1,7 @@
 // GET /jobs/{id}/images/{field}.png over real HTTP, in a build with the
 // renderer (without it the endpoint answers 501, see test_server_api.cpp):
 // every frame, including the initial state whose stress is zero everywhere,
-// the fields, the zoom window, the refusals, and the cache.
+// the fields, the zoom window, the refusals, and the bounded cache.
 #ifdef GEARSPH_WITH_RENDER
 
 #include "tests/test_server_support.hpp"
@@ -26,7 +26,7 @@ std::pair<std::uint32_t, std::uint32_t> png_size(const std::string& png) {
 class ServerImages : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    server_ = new ServerProcess({"--threads-per-job", "1"});
+    server_ = new ServerProcess({"--threads-per-job", "1", "--image-cache-mb", "0.3"});
     auto c = server_->client();
     json job = tiny_job();
     job["output"] = {{"frames", 4}};
@@ -112,15 +112,43 @@ TEST_F(ServerImages, RefusalsNameWhatExists) {
   EXPECT_EQ(c.get("/jobs/00000000-0000-0000-0000-000000000000/images/von_mises.png").status, 404u);
 }
 
-TEST_F(ServerImages, RenderedImagesAreCachedInTheJobDirectory) {
+// Rendered images are kept in a bounded cache in memory, not in the job's
+// directory: however many frames and zooms are asked for, its result files
+// (what /results lists and `gearsph submit --out` downloads) stay the same.
+TEST_F(ServerImages, RenderedImagesStayOutOfTheResultsInABoundedCache) {
   auto c = server_->client(std::chrono::seconds(120));
-  const ClientResponse r = c.get(image("velocity.png?frame=1"));
-  ASSERT_EQ(r.status, 200u) << r.body;
-  const fs::path cached = server_->data() / "jobs" / *id_ / "image-velocity-frame1.png";
-  ASSERT_TRUE(fs::exists(cached));
-  EXPECT_TRUE(slurp(cached) == r.body);
-  // Served from the cache the second time: the same bytes.
-  EXPECT_TRUE(c.get(image("velocity.png?frame=1")).body == r.body);
+  const json files_before = c.get("/jobs/" + *id_ + "/files").json();
+  const ClientResponse first = c.get(image("velocity.png?frame=1"));
+  ASSERT_EQ(first.status, 200u) << first.body;
+  EXPECT_EQ(first.header("Cache-Control"), "private, max-age=3600");
+  // The second time from the cache: the same bytes, one hit more.
+  const auto hits = [&] { return c.get("/health").json().at("image_cache").at("hits").get<int>(); };
+  const int hits_before = hits();
+  EXPECT_TRUE(c.get(image("velocity.png?frame=1")).body == first.body);
+  EXPECT_EQ(hits(), hits_before + 1);
+  // Many zoom windows: a 300 kB cache (--image-cache-mb 0.3) holds a few.
+  for (int k = 1; k <= 12; ++k) {
+    const std::string zoom = "0,0," + std::to_string(0.002 * k) + ",0.01";
+    ASSERT_EQ(c.get(image("von_mises.png?frame=2&zoom=" + zoom)).status, 200u) << k;
+  }
+  const json cache = c.get("/health").json().at("image_cache");
+  EXPECT_EQ(cache.at("max_bytes"), 300000);
+  EXPECT_LE(cache.at("bytes").get<double>(), 3e5) << cache.dump();
+  EXPECT_GT(cache.at("entries").get<int>(), 0) << cache.dump();
+  // Fewer kept than rendered: the least recently used were dropped.
+  EXPECT_LT(cache.at("entries").get<int>(), cache.at("misses").get<int>()) << cache.dump();
+  // Nothing was written beside the results.
+  EXPECT_EQ(c.get("/jobs/" + *id_ + "/files").json(), files_before);
+  for (const auto& e : fs::directory_iterator(server_->data() / "jobs" / *id_)) {
+    EXPECT_EQ(e.path().extension(), e.path().extension() == ".png" ? ".none" : e.path().extension())
+        << "an image was written into the job directory: " << e.path();
+  }
+  std::set<std::string> listed;
+  const json results = c.get("/jobs/" + *id_ + "/results").json();
+  for (const json& f : results.at("files")) {
+    listed.insert(f.at("name").get<std::string>());
+  }
+  for (const std::string& name : listed) EXPECT_EQ(name.rfind("image-", 0), std::string::npos);
 }
 
 }  // namespace

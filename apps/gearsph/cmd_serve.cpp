@@ -6,6 +6,7 @@
 
 #include "apps/gearsph/cli.hpp"
 #include "apps/gearsph/serve_images.hpp"
+#include "server/router.hpp"
 #ifdef GEARSPH_WITH_FE
 #include "fe/external_program.hpp"
 #endif
@@ -71,6 +72,13 @@ int cmd_serve(Args& args) {
   }
   if (auto v = args.option("token-file")) c.token = server::read_token_file(*v);
   if (auto v = args.option("cors-origin")) c.cors_origin = *v;
+  while (auto v = args.option("allowed-host")) {
+    if (*v != "*" && !server::parse_host(*v)) {
+      throw std::invalid_argument("--allowed-host takes a host name, name:port or *, not '" + *v +
+                                  "'");
+    }
+    c.allowed_hosts.push_back(*v);
+  }
   if (auto v = args.option("web")) c.web_root = *v;
   c.max_attempts = args.integer("max-attempts", c.max_attempts);
   if (c.max_attempts < 1) throw std::invalid_argument("--max-attempts is 1 or more");
@@ -88,6 +96,18 @@ int cmd_serve(Args& args) {
   l.max_study_jobs = static_cast<std::int64_t>(
       number_option(args, "max-study-jobs", static_cast<double>(l.max_study_jobs)));
   l.max_connections = args.integer("max-connections", l.max_connections);
+  if (auto v = args.option("image-cache-mb")) {
+    std::size_t used = 0;
+    double mb = -1;
+    try {
+      mb = std::stod(*v, &used);
+    } catch (const std::exception&) {
+    }
+    if (used != v->size() || !(mb >= 0) || mb > 1e6) {
+      throw std::invalid_argument("--image-cache-mb takes megabytes (0 or more), not '" + *v + "'");
+    }
+    c.image_cache_bytes = static_cast<std::uint64_t>(mb * 1e6);
+  }
 
   server::Timeouts& t = c.timeouts;
   t.header = seconds_option(args, "header-timeout", t.header);

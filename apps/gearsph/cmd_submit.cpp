@@ -1,11 +1,16 @@
 // gearsph submit JOB.json --server URL [--wait] [--out DIR] [--token-file F]
+//                [--idempotency-key KEY] [--retry-for SECONDS]
 // Submits a job to a running `gearsph serve`, follows its progress (Server-
-// Sent Events) on stderr and downloads the results.
+// Sent Events) on stderr and downloads the results. URL may carry a path
+// (a server behind a proxy at http://host/gearsph): every request goes
+// below it.
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
@@ -17,8 +22,14 @@ namespace gearsph::cli {
 
 namespace {
 
+using Clock = std::chrono::steady_clock;
 using server::ClientResponse;
 using server::HttpClient;
+
+// How long --wait keeps trying while the server is unreachable.
+constexpr double kDefaultRetryFor_s = 300;
+// Between two attempts to reach it.
+constexpr std::chrono::seconds kRetryPause{2};
 
 void print_problem(const ClientResponse& r) {
   try {
@@ -63,19 +74,37 @@ bool terminal(const std::string& status) {
 }
 
 // Follows the job's event stream until it has a final status; reconnects
-// (resuming with Last-Event-ID) if the server goes away meanwhile.
-nlohmann::json follow(HttpClient& client, const std::string& id) {
+// (resuming with Last-Event-ID) if the server goes away meanwhile, for as
+// long as `retry_for` since it was last reached.
+nlohmann::json follow(HttpClient& client, const std::string& base, const std::string& id,
+                      double retry_for) {
   ProgressLine line;
   nlohmann::json final_status;
   std::string last_id;
-  int failures = 0;
+  // Since when every attempt to reach the server has failed.
+  std::optional<Clock::time_point> failing_since;
+  auto reached = [&] { failing_since.reset(); };
+  auto unreachable = [&](const std::string& what) {
+    line.end();
+    const auto now = Clock::now();
+    if (!failing_since) failing_since = now;
+    const double silent = std::chrono::duration<double>(now - *failing_since).count();
+    if (silent >= retry_for) {
+      throw std::runtime_error(what + "; gave up after " + std::to_string(int(silent)) +
+                               " s without the server (--retry-for " +
+                               std::to_string(int(retry_for)) + ")");
+    }
+    std::fprintf(stderr, "gearsph submit: %s; trying again\n", what.c_str());
+    std::this_thread::sleep_for(kRetryPause);
+  };
   for (;;) {
     try {
       HttpClient::Headers headers;
       if (!last_id.empty()) headers.emplace_back("Last-Event-ID", last_id);
       const ClientResponse head = client.events(
-          "/jobs/" + id + "/events",
+          base + "/jobs/" + id + "/events",
           [&](const server::SseEvent& e) {
+            reached();
             if (!e.id.empty()) last_id = e.id;
             const auto data = nlohmann::json::parse(e.data, nullptr, false);
             if (data.is_discarded()) return true;
@@ -97,27 +126,30 @@ nlohmann::json follow(HttpClient& client, const std::string& id) {
             return true;
           },
           headers);
-      failures = 0;
-      if (head.status != 200) {
+      reached();
+      // 204: the stream has nothing more (its final status was sent before).
+      if (head.status != 200 && head.status != 204) {
         line.end();
         print_problem(head);
-        throw std::runtime_error("cannot follow job " + id);
+        throw std::logic_error("cannot follow job " + id);
       }
     } catch (const std::runtime_error& e) {
-      if (++failures > 150) throw;  // about five minutes without the server
-      line.end();
-      std::fprintf(stderr, "gearsph submit: %s; trying again\n", e.what());
-      std::this_thread::sleep_for(std::chrono::seconds(2));
+      unreachable(e.what());
+      continue;
     }
     if (!final_status.is_null()) break;
-    // The stream ended without a final status (the server stopped): ask.
+    // The stream ended without a final status (the server stopped, or it
+    // had been sent already): ask.
     try {
-      const ClientResponse r = client.get("/jobs/" + id);
+      const ClientResponse r = client.get(base + "/jobs/" + id);
+      reached();
       if (r.status == 200 && terminal(r.json().value("status", std::string()))) {
         final_status = r.json();
         break;
       }
-    } catch (const std::runtime_error&) {
+    } catch (const std::runtime_error& e) {
+      unreachable(e.what());
+      continue;
     }
     std::this_thread::sleep_for(std::chrono::seconds(1));
   }
@@ -125,8 +157,14 @@ nlohmann::json follow(HttpClient& client, const std::string& id) {
   return final_status;
 }
 
-void download_results(HttpClient& client, const std::string& id, const std::filesystem::path& out) {
-  const ClientResponse r = client.get("/jobs/" + id + "/results");
+// A link of the server's ("/jobs/..."), below the URL's path.
+std::string below(const std::string& base, const std::string& href) {
+  return !href.empty() && href.front() == '/' ? base + href : href;
+}
+
+void download_results(HttpClient& client, const std::string& base, const std::string& id,
+                      const std::filesystem::path& out) {
+  const ClientResponse r = client.get(base + "/jobs/" + id + "/results");
   if (r.status != 200) {
     print_problem(r);
     return;
@@ -138,12 +176,25 @@ void download_results(HttpClient& client, const std::string& id, const std::file
     const std::string name = f.value("name", std::string());
     // Names come from the server: keep them plain.
     if (name.empty() || name.find('/') != std::string::npos || name.front() == '.') continue;
-    const ClientResponse d = client.download(f.value("href", std::string()), out / name);
+    const ClientResponse d =
+        client.download(below(base, f.value("href", std::string())), out / name);
     if (d.status != 200) {
       std::fprintf(stderr, "gearsph submit: %s: %u\n", name.c_str(), d.status);
     }
   }
   std::fprintf(stderr, "gearsph submit: results in %s\n", out.string().c_str());
+}
+
+double seconds_value(const std::optional<std::string>& v, const std::string& name,
+                     double fallback) {
+  if (!v) return fallback;
+  try {
+    std::size_t used = 0;
+    const double s = std::stod(*v, &used);
+    if (used == v->size() && s >= 0 && s <= 30 * 86400) return s;
+  } catch (const std::exception&) {
+  }
+  throw std::invalid_argument("--" + name + " takes seconds (0 or more), not '" + *v + "'");
 }
 
 }  // namespace
@@ -153,11 +204,13 @@ int cmd_submit(Args& args) {
   const auto out = args.option("out");
   const auto token_file = args.option("token-file");
   const auto key = args.option("idempotency-key");
+  const double retry_for = seconds_value(args.option("retry-for"), "retry-for", kDefaultRetryFor_s);
   const bool wait = args.flag("wait") || out.has_value();
   const auto pos = args.positional();
   if (pos.size() != 1 || !url) {
     throw std::invalid_argument(
-        "usage: gearsph submit JOB.json --server URL [--wait] [--out DIR] [--token-file F]");
+        "usage: gearsph submit JOB.json --server URL [--wait] [--out DIR] [--token-file F] "
+        "[--idempotency-key KEY] [--retry-for SECONDS]");
   }
   const server::Url u = server::Url::parse(*url);
   HttpClient client(u.host, u.port, std::chrono::seconds(60));
@@ -166,7 +219,7 @@ int cmd_submit(Args& args) {
 
   HttpClient::Headers headers;
   if (key) headers.emplace_back("Idempotency-Key", *key);
-  const ClientResponse r = client.post_json("/jobs", read_file(pos[0]), headers);
+  const ClientResponse r = client.post_json(u.base + "/jobs", read_file(pos[0]), headers);
   if (r.status != 201 && r.status != 200) {
     print_problem(r);
     return r.status == 400 || r.status == 422 || r.status == 415 || r.status == 413 ? 2 : 1;
@@ -177,14 +230,14 @@ int cmd_submit(Args& args) {
   std::fflush(stdout);
   std::fprintf(stderr, "gearsph submit: job %s %s (%s)\n", id.c_str(),
                r.status == 201 ? "submitted" : "already submitted with this key",
-               (*url + "/jobs/" + id).c_str());
+               (u.root() + "/jobs/" + id).c_str());
   if (!wait) return 0;
 
-  const nlohmann::json final_status = follow(client, id);
+  const nlohmann::json final_status = follow(client, u.base, id, retry_for);
   const std::string s = final_status.value("status", std::string());
   std::fprintf(stderr, "gearsph submit: job %s %s: %s\n", id.c_str(), s.c_str(),
                final_status.value("message", std::string()).c_str());
-  if (out && s == "successful") download_results(client, id, *out);
+  if (out && s == "successful") download_results(client, u.base, id, *out);
   return s == "successful" ? 0 : s == "failed" ? 3 : 4;
 }
 

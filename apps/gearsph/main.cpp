@@ -25,16 +25,19 @@ const char* kUsage = R"(gearsph - SPH simulation of rack-and-pinion gear meshing
 usage:
   gearsph run JOB.json --out DIR [--threads N] [--quiet]
       run one job; writes DIR/summary.json and DIR/history.csv
-  gearsph validate [--quick] [--out DIR] [--threads N]
-      run the validation cases against their references; prints a table
-      and writes DIR/validation.json (DIR defaults to ./validation)
+  gearsph validate [--quick] [--only TEXT] [--out DIR] [--threads N]
+      run the validation cases against their references (--only: the cases
+      whose id contains TEXT); prints a table and writes DIR/validation.json
+      (DIR defaults to ./validation)
   gearsph study stability [--out DIR] [--full] [--only TEXT] [--threads N] [--no-images]
       the stability study: failure-prone cases x methods, measured; writes
       DIR/stability.csv, stability.json, stability_table.png and fields/*.png
       (DIR defaults to ./stability; --full adds the long cells, docs/stability.md)
-  gearsph bench [--quick] [--out DIR] [--no-pysph] [--skip-full] [--max-particles N]
-      speed side by side: plate and gear throughput at 1 and 2 threads, PySPH's
-      plate, cost per particle-step 1e3..1e6, memory, the paper's full case
+  gearsph bench [--quick] [--out DIR] [--repeats N] [--no-pysph] [--python PATH]
+                [--pysph-script FILE] [--skip-full] [--max-particles N]
+      speed side by side: plate and gear throughput at 1 and 2 threads (best of
+      --repeats), PySPH's plate (run by --python with bench/pysph_plate.py or
+      --pysph-script), cost per particle-step 1e3..1e6, memory, the paper's full case
   gearsph bench pareto --out DIR [--quick] [--threads N] [--cases plate,hertz,gear]
       error against cost: plate (kernel, spacing, h/dx, CFL, UL/TL), Hertz p0
       and gear root bending (kernel, spacing); CSV + PNG per case
@@ -55,12 +58,39 @@ usage:
       --out DIR writes every frame
   gearsph plot RUN_DIR --columns A,B --out FILE.png [--title T] [--ylabel L] [--scale S]
       history.csv columns against time
-  gearsph serve [--port 8080] [--bind 127.0.0.1] [--data DIR] [--workers N] [--threads-per-job M] [--token-file F] [--cors-origin ORIGIN] [--web DIR]
-      the job service: HTTP API, job store, worker pool (docs/api.md lists every option)
+  gearsph serve [options]
+      the job service: HTTP API, job store, worker pool, dashboard (docs/api.md)
+      --port P             TCP port (8080; 0: any free port, printed at start-up)
+      --bind ADDR          address to listen on (127.0.0.1; 0.0.0.0: every interface)
+      --allowed-host H     another name to answer to in the Host header: name,
+                           name:port or * (repeatable; localhost, 127.0.0.1, [::1]
+                           and the bound address with the port are always answered)
+      --data DIR           job store DIR/gearsph.db and job directories DIR/jobs/ (./data)
+      --workers N          jobs running at the same time (1)
+      --threads-per-job M  most OpenMP threads a job gets (cores / N)
+      --token-file F       every request for data needs the token on F's first line
+      --cors-origin O      allow browser requests from origin O (* for any)
+      --web DIR            the dashboard's files (the source tree's web/)
+      --max-attempts N     a job interrupted by this many crashes fails (3)
+      limits:   --max-body-bytes B (1048576)  --max-particles N (5e6)  --max-steps N (1e8)
+                --max-particle-steps N (1e12)  --max-disk-gb G (50)  --max-study-jobs N (100)
+                --max-connections N (512)  --image-cache-mb M (64, rendered images in memory)
+      timeouts [s]: --header-timeout 10  --body-timeout 30  --idle-timeout 60
+                --write-timeout 60  --keepalive 15 (comments on quiet event streams)
+      many machines (docs/scale-out.md): --store URL (postgresql://... or sqlite:PATH)
+                --results DIR  --no-local-workers  --lease S (30)  --dispatch local|slurm
+                --sbatch-arg A (repeatable)  --slurm-gearsph PATH
   gearsph submit JOB.json --server URL [--wait] [--out DIR] [--token-file F]
-      submit a job to a server, follow its progress, download its results
-  gearsph worker --store URL --results DIR [--workers N] [--threads-per-job M] [--lease S]
-      run jobs from a shared job store (docs/scale-out.md)
+                 [--idempotency-key KEY] [--retry-for SECONDS]
+      submit a job to a server (URL may hold a path: http://host/gearsph), print
+      its id; --wait follows its progress, --out DIR also downloads its files;
+      --idempotency-key: a retried submission with the same key and job makes
+      no second job; --retry-for: how long --wait keeps trying while the server
+      is unreachable (300); exit 0 successful, 3 failed, 4 dismissed, 2 invalid
+  gearsph worker --store URL --results DIR [--workers N] [--threads-per-job M]
+                 [--lease S] [--poll S] [--max-attempts N]
+      run jobs from a shared job store (docs/scale-out.md): claims held for
+      --lease seconds (30), the queue looked at every --poll seconds (0.5)
   gearsph help
 
 exit status: 0 success, 1 error, 2 invalid job or usage, 3 run diverged, 4 cancelled,

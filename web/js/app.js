@@ -1,11 +1,12 @@
 // The dashboard: a hash router over four views and one shared event stream.
-import { get } from "./api.js";
-import { h } from "./format.js";
+// Only this module starts anything; the others can be imported on their own.
+import { ensureSignedIn, get, onTokenNeeded } from "./api.js";
+import { compareView } from "./compare.js";
 import { events } from "./events.js";
-import { submitView } from "./submit.js";
 import { jobsView } from "./jobs.js";
 import { resultView } from "./result.js";
-import { compareView } from "./compare.js";
+import { submitView } from "./submit.js";
+import { askForToken, h } from "./ui.js";
 
 const main = document.getElementById("main");
 let current = null; // {dispose()}
@@ -38,14 +39,6 @@ function route() {
   current = render();
   const title = { submit: "New job", jobs: "Jobs", compare: "Compare" }[view];
   document.title = `${title} · GearSPH`;
-}
-
-export function toast(message, ms = 5000) {
-  const t = document.getElementById("toast");
-  t.textContent = message;
-  t.hidden = false;
-  clearTimeout(toast.timer);
-  toast.timer = setTimeout(() => (t.hidden = true), ms);
 }
 
 // The server's identity once, then whether the live stream is connected.
@@ -83,8 +76,20 @@ function runningCount() {
   update();
 }
 
-window.addEventListener("hashchange", route);
-route();
-health();
-events.start();
-runningCount();
+// A server started with --token-file: the token is asked for once.
+onTokenNeeded(askForToken);
+
+async function start() {
+  try {
+    await ensureSignedIn();
+  } catch {
+    // unreachable, or no token given: the views say what fails
+  }
+  window.addEventListener("hashchange", route);
+  route();
+  health();
+  events.start();
+  runningCount();
+}
+
+start();

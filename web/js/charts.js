@@ -33,20 +33,6 @@ function tickLabels(u, splits, axis, space, increment) {
   return splits.map((v) => (v === null ? "" : (Math.abs(v) < increment * 1e-6 ? 0 : v).toFixed(d)));
 }
 
-// history.csv -> {columns: [names], data: {name: Float64Array}}.
-export function parseCsv(text) {
-  const lines = text.split("\n").filter((l) => l.length);
-  const columns = lines[0].split(",").map((s) => s.trim());
-  const data = {};
-  const n = lines.length - 1;
-  for (const c of columns) data[c] = new Float64Array(n);
-  for (let i = 0; i < n; i++) {
-    const cells = lines[i + 1].split(",");
-    for (let k = 0; k < columns.length; k++) data[columns[k]][i] = cells[k] === "" ? NaN : Number(cells[k]);
-  }
-  return { columns, data, rows: n };
-}
-
 // A chart in `el` that follows the element's width.
 //   time_s: sample times [s]; series: [{label, values [SI], colour?, dash?}]
 //   quantity/unit: the y axis ("force", "N"); prefix: false keeps the unit as is.

@@ -2,9 +2,11 @@
 // (condition, max stress, velocity-stability time), and their histories
 // overlaid on one time axis.
 import { get, text } from "./api.js";
-import { duration, eng, h, int } from "./format.js";
+import { PALETTE, joinSeries, lineChart } from "./charts.js";
 import { events } from "./events.js";
-import { PALETTE, joinSeries, lineChart, parseCsv } from "./charts.js";
+import { duration, eng, int } from "./format.js";
+import { conditions, parseCsv } from "./results-data.js";
+import { h } from "./ui.js";
 
 // [history column, title, quantity, SI unit, choose a prefix]
 const QUANTITIES = [
@@ -14,31 +16,6 @@ const QUANTITIES = [
   ["max_von_mises_Pa", "Max von Mises stress", "stress", "Pa", true],
   ["transmission_error_m", "Transmission error", "error", "m", true],
 ];
-// Parameters that say what a run's condition was, when they differ.
-const KEY_PARAMETERS = ["/scene/pinion/omega_rad_s", "/scene/rack/load_N", "/discretization/spacing_m",
-  "/discretization/spacing_mm", "/discretization/kernel", "/method/contact/model", "/method/formulation"];
-
-function flatten(doc, prefix = "", out = {}) {
-  for (const [k, v] of Object.entries(doc || {})) {
-    const p = `${prefix}/${k}`;
-    if (v && typeof v === "object" && !Array.isArray(v)) flatten(v, p, out);
-    else out[p] = JSON.stringify(v);
-  }
-  return out;
-}
-
-function shortName(pointer) {
-  return pointer.split("/").slice(-2).join(".").replace(/^(scene|method|time|output|discretization)\./, "");
-}
-
-export function conditions(jobDocs) {
-  const flat = jobDocs.map((d) => flatten(d));
-  const keys = new Set(flat.flatMap((f) => Object.keys(f)));
-  let differing = [...keys].filter((k) => k !== "/name" && k !== "/threads" && new Set(flat.map((f) => f[k])).size > 1);
-  if (!differing.length) differing = KEY_PARAMETERS.filter((k) => keys.has(k)).slice(0, 3);
-  return flat.map((f) => differing.filter((k) => f[k] !== undefined).map((k) => `${shortName(k)} = ${f[k]}`).join(", "));
-}
-
 export function compareView(root, params) {
   let disposed = false;
   let chart = null;

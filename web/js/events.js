@@ -1,7 +1,10 @@
 // One Server-Sent Events stream (/events) for the whole page: the job list,
 // the result view and the running-jobs badge subscribe to it. No polling:
 // the list is fetched once, and again only after a `reset` event.
-import { get } from "./api.js";
+import { ensureSignedIn, get } from "./api.js";
+
+// Before a refused stream is opened again (the browser's own retry: 3 s).
+const REOPEN_MS = 3000;
 
 class JobEvents {
   constructor() {
@@ -10,11 +13,16 @@ class JobEvents {
     this.source = null;
     this.loaded = false;
     this.connected = null; // null until the stream first opens or fails
+    this.reopening = false;
   }
 
   start() {
     if (this.source) return;
     this.reload();
+    this.open();
+  }
+
+  open() {
     this.source = new EventSource("/events");
     const onEvent = (e) => {
       let doc;
@@ -38,7 +46,24 @@ class JobEvents {
     this.source.addEventListener("error", () => {
       this.connected = false;
       this.emit(null, "connection");
+      // A refused stream (401: the server restarted with another token)
+      // is closed for good: sign in again, then open it anew.
+      if (this.source.readyState === EventSource.CLOSED) this.reopen();
     });
+  }
+
+  async reopen() {
+    if (this.reopening) return;
+    this.reopening = true;
+    this.source.close();
+    await new Promise((resolve) => setTimeout(resolve, REOPEN_MS));
+    try {
+      await ensureSignedIn();
+    } catch {
+      // unreachable or declined: the stream's own errors say so
+    }
+    this.reopening = false;
+    this.open();
   }
 
   async reload() {

@@ -1,4 +1,5 @@
-// Numbers for people: engineering prefixes, fixed significant figures.
+// Numbers and times for people: engineering prefixes, fixed significant
+// figures, durations. Pure functions (no DOM): unit-tested in Node.
 
 const PREFIXES = [
   [1e9, "G"], [1e6, "M"], [1e3, "k"], [1, ""], [1e-3, "m"], [1e-6, "µ"], [1e-9, "n"],
@@ -53,31 +54,14 @@ export function when(iso) {
   return `${d.toISOString().slice(0, 10)} ${time}`;
 }
 
-// A tiny element builder: h("div", {class: "x"}, child, "text").
-export function h(tag, attrs = {}, ...children) {
-  const el = document.createElement(tag);
-  for (const [k, v] of Object.entries(attrs || {})) {
-    if (v === null || v === undefined || v === false) continue;
-    if (k === "class") el.className = v;
-    else if (k.startsWith("on") && typeof v === "function") el.addEventListener(k.slice(2), v);
-    else if (k === "dataset") Object.assign(el.dataset, v);
-    else if (v === true) el.setAttribute(k, "");
-    else el.setAttribute(k, v);
-  }
-  for (const c of children.flat()) {
-    if (c === null || c === undefined || c === false) continue;
-    el.append(c instanceof Node ? c : document.createTextNode(String(c)));
-  }
-  return el;
-}
-
-// el.replaceChildren() that, like h(), leaves out null, undefined and false
-// (which replaceChildren would show as text).
-export function put(el, ...children) {
-  el.replaceChildren(...children.flat().filter((c) => c !== null && c !== undefined && c !== false));
-  return el;
-}
-
 export function escapeId(s) {
   return s.replace(/[^A-Za-z0-9_-]/g, "_");
+}
+
+// Time left of a running job; none until its first steps give a speed.
+export function eta(job) {
+  if (job.status === "accepted") return "queued";
+  if (job.status !== "running") return "—";
+  if (!(job.step > 0) || job.eta_s === null || job.eta_s === undefined) return "estimating…";
+  return duration(job.eta_s);
 }

@@ -1,39 +1,9 @@
 // Jobs: every job with live status and progress from the event stream,
 // ETA, cancel, and a selection to compare.
-import { ApiError, del } from "./api.js";
-import { duration, eng, h, int, when } from "./format.js";
+import { duration, eng, eta, int, when } from "./format.js";
 import { events } from "./events.js";
-import { toast } from "./app.js";
-
-export function progressBar(job) {
-  const pct = Math.max(0, Math.min(100, job.progress ?? 0));
-  return h("div", { class: "progress", role: "progressbar", "aria-valuemin": "0", "aria-valuemax": "100",
-    "aria-valuenow": String(pct), "aria-label": `progress of ${job.name || "job"}` },
-  h("span", { style: `width:${pct}%` }), h("em", {}, `${pct}%`));
-}
-
-// Time left of a running job; none until its first steps give a speed.
-export function eta(job) {
-  if (job.status === "accepted") return "queued";
-  if (job.status !== "running") return "—";
-  if (!(job.step > 0) || job.eta_s === null || job.eta_s === undefined) return "estimating…";
-  return duration(job.eta_s);
-}
-
-export function statusBadge(status) {
-  return h("span", { class: `status ${status}` }, status === "accepted" ? "queued" : status);
-}
-
-export async function cancelJob(job) {
-  const finished = job.status === "successful" || job.status === "failed";
-  const what = finished ? "Dismiss this job and delete its results?" : "Cancel this job?";
-  if (!window.confirm(`${what}\n\n${job.name} (${job.jobID})`)) return;
-  try {
-    events.remember(await del(`/jobs/${job.jobID}`));
-  } catch (e) {
-    toast(e instanceof ApiError ? e.message : `cancel failed: ${e.message}`);
-  }
-}
+import { cancelJob, progressBar, statusBadge } from "./job-parts.js";
+import { h } from "./ui.js";
 
 export function jobsView(root) {
   const selected = new Set();

@@ -2,10 +2,12 @@
 // field with a frame slider, play and zoom, the time-history charts, the
 // summary numbers and the files.
 import { ApiError, get, text } from "./api.js";
-import { bytes, duration, eng, h, int, put, sig } from "./format.js";
+import { lineChart } from "./charts.js";
 import { events } from "./events.js";
-import { cancelJob, eta, progressBar, statusBadge } from "./jobs.js";
-import { lineChart, parseCsv } from "./charts.js";
+import { bytes, duration, eng, eta, int, sig } from "./format.js";
+import { cancelJob, progressBar, statusBadge } from "./job-parts.js";
+import { frameTimes, historyCharts, meshingZone, parseCsv } from "./results-data.js";
+import { h, put } from "./ui.js";
 
 const FIELDS = [
   ["von_mises", "von Mises stress"],
@@ -18,52 +20,6 @@ const FIELDS = [
   ["density", "density"],
   ["body", "bodies"],
 ];
-
-// Frame times from results.xmf (XDMF temporal collection).
-export function frameTimes(xmf) {
-  return [...xmf.matchAll(/<Time Value="([^"]+)"/g)].map((m) => Number(m[1]));
-}
-
-// The meshing zone of a rack-and-pinion run: around the pitch point
-// (0, -r_p), the pinion being centred at the origin; null for other scenes.
-export function meshingZone(summary) {
-  const p = summary?.model?.pinion;
-  if (!p?.pitch_radius_m || !p?.teeth) return null;
-  const rp = p.pitch_radius_m;
-  const m = (2 * rp) / p.teeth;
-  return [-2.6 * m, -rp - 1.55 * m, 2.6 * m, -rp + 1.55 * m];
-}
-
-// History charts that exist in this run: [{id, title, quantity, unit, series}].
-export function historyCharts(hist) {
-  const cols = hist.columns;
-  const d = hist.data;
-  const pick = (re) => cols.filter((c) => re.test(c));
-  const nice = (c) => c.replace(/^probe_/, "").replace(/_(m_s|N|Pa|m)$/, "").replace(/_/g, " ");
-  const charts = [];
-  const vel = [...pick(/^probe_.*_v[xy]_m_s$/), ...pick(/^rack_vx_m_s$/)];
-  if (vel.length) {
-    charts.push({ id: "chart-velocity", title: "Probe velocities", quantity: "velocity", unit: "m/s", prefix: false,
-      series: vel.map((c) => ({ label: c === "rack_vx_m_s" ? "rack mean vx" : nice(c), values: d[c],
-        dash: /_vy_/.test(c) ? [4, 3] : undefined })) });
-  }
-  const force = [...pick(/^contact_force_N$/), ...pick(/^tooth_force_.*_N$/)];
-  if (force.length) {
-    charts.push({ id: "chart-force", title: "Contact force", quantity: "force", unit: "N",
-      series: force.map((c) => ({ label: c === "contact_force_N" ? "total contact force" : nice(c), values: d[c] })) });
-  }
-  const stress = [...pick(/^max_von_mises_Pa$/), ...pick(/^root_stress_.*_Pa$/)];
-  if (stress.length) {
-    charts.push({ id: "chart-stress", title: "Maximum stress", quantity: "stress", unit: "Pa",
-      series: stress.map((c) => ({ label: c === "max_von_mises_Pa" ? "max von Mises" : nice(c), values: d[c] })) });
-  }
-  if (!charts.length) {
-    const other = cols.filter((c) => c !== "time_s").slice(0, 4);
-    charts.push({ id: "chart-history", title: "History", quantity: "value", unit: "", prefix: false,
-      series: other.map((c) => ({ label: c, values: d[c] })) });
-  }
-  return charts;
-}
 
 export function resultView(root, id) {
   let disposed = false;

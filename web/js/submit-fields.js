@@ -1,0 +1,104 @@
+// The rack-and-pinion form as data: its fields (JSON pointer, label, kind),
+// the paper's case it starts from, the text of each field's hint, and the
+// conversions between what a person types and the job document. Pure (no
+// DOM): unit-tested in Node.
+import { limitsText, nodeAt, setPointer } from "./schema.js";
+
+export const GROUPS = [
+  ["Job", [
+    { pointer: "/name", label: "Name", type: "text" },
+  ]],
+  ["Pinion", [
+    { pointer: "/scene/pinion/module_mm", label: "Module" },
+    { pointer: "/scene/pinion/teeth", label: "Teeth", step: 1 },
+    { pointer: "/scene/pinion/pressure_angle_deg", label: "Pressure angle" },
+    { pointer: "/scene/pinion/face_width_mm", label: "Face width" },
+    { pointer: "/scene/pinion/profile_shift", label: "Profile shift" },
+    { pointer: "/scene/pinion/omega_rad_s", label: "Speed ω" },
+    { pointer: "/scene/pinion/modelled_teeth", label: "Modelled teeth", type: "teeth" },
+  ]],
+  ["Rack", [
+    { pointer: "/scene/rack/velocity_m_s", label: "Initial velocity" },
+    { pointer: "/scene/rack/load_N", label: "Load" },
+    { pointer: "/scene/rack/modelled_teeth", label: "Modelled teeth", type: "teeth" },
+  ]],
+  ["Material (both bodies)", [
+    { pointer: "/scene/material/E_Pa", label: "Young's modulus E" },
+    { pointer: "/scene/material/nu", label: "Poisson's ratio ν" },
+    { pointer: "/scene/material/rho_kg_m3", label: "Density ρ" },
+  ]],
+  ["Discretisation and method", [
+    { pointer: "/discretization/spacing_mm", label: "Particle spacing" },
+    { pointer: "/discretization/kernel", label: "Kernel", type: "enum" },
+    { pointer: "/method/formulation", label: "Formulation", type: "enum" },
+    { pointer: "/method/contact/model", label: "Contact model", type: "enum" },
+  ]],
+  ["Time and output", [
+    { pointer: "/time/end_s", label: "End time" },
+    { pointer: "/time/dt_s", label: "Time step", placeholder: "automatic" },
+    { pointer: "/output/frames", label: "Frames", step: 1 },
+  ]],
+];
+export const FIELDS = GROUPS.flatMap(([, f]) => f);
+export const PAPER_CASE = { name: "paper-base-case", scene: { type: "rack_pinion" } };
+
+export function fieldId(pointer) {
+  return "f" + pointer.replace(/\//g, "-");
+}
+
+// Numbers of a million and more are shown as 1.73e11, not 173000000000.
+export function formText(v) {
+  if (v === undefined || v === null) return "";
+  if (typeof v === "number" && Math.abs(v) >= 1e6) return v.toExponential().replace("e+", "e");
+  return String(v);
+}
+
+// The schema's node of a field and the default it shows: its own, or the
+// one its enclosing object gives it (the material's, say).
+export function fieldSchema(schema, pointer) {
+  const node = nodeAt(schema, pointer);
+  const parent = nodeAt(schema, pointer.replace(/\/[^/]*$/, ""));
+  const key = pointer.split("/").pop();
+  const def = node?.default !== undefined ? node.default
+    : parent?.default && typeof parent.default === "object" ? parent.default[key] : undefined;
+  return { node, def };
+}
+
+// "range 6 to 300 · default 12" under a field.
+export function hintText(node, def, spec) {
+  const limits = limitsText(node);
+  const showDefault = def !== undefined && typeof def !== "object" && spec.type !== "text";
+  const text = [limits && `range ${limits}`, showDefault && `default ${formText(def)}`].filter(Boolean).join(" · ");
+  return text || (node?.description || "").slice(0, 80);
+}
+
+// What a person typed, as the job holds it: numbers as numbers (else the
+// text, which the server then refuses at the field), "auto" or a count for
+// the modelled teeth, text as text.
+export function parseValue(raw, spec) {
+  if (spec.type === "teeth") return /^-?\d+$/.test(raw) ? Number(raw) : raw;
+  if (spec.type === "text" || spec.type === "enum") return raw;
+  return Number.isFinite(Number(raw)) ? Number(raw) : raw;
+}
+
+// The job of the form: [[spec, raw text]]; empty fields are left to the scene.
+export function jobFromValues(entries) {
+  const job = { scene: { type: "rack_pinion" } };
+  for (const [spec, text] of entries) {
+    const raw = text.trim();
+    if (raw !== "") setPointer(job, spec.pointer, parseValue(raw, spec));
+  }
+  return job;
+}
+
+// The form field a problem's pointer concerns: itself, the field standing
+// for it, or the first field inside it; null if none.
+export function fieldPointerFor(pointer, pointers) {
+  if (pointers.includes(pointer)) return pointer;
+  if (pointer === "/discretization" || pointer.startsWith("/discretization/spacing")) {
+    return pointers.includes("/discretization/spacing_mm") ? "/discretization/spacing_mm" : null;
+  }
+  if (pointer === "/time/cfl") return pointers.includes("/time/dt_s") ? "/time/dt_s" : null;
+  if (pointer === "") return null;
+  return pointers.find((p) => p.startsWith(pointer + "/")) ?? null;
+}

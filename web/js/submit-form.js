@@ -1,0 +1,117 @@
+// The rack-and-pinion form built from the job schema, and the problems the
+// server finds, shown at the fields they concern (and listed above the
+// form, each linked to its field).
+import { getPointer, unitOf } from "./schema.js";
+import { GROUPS, fieldId, fieldPointerFor, fieldSchema, formText, hintText, jobFromValues } from "./submit-fields.js";
+import { h, put } from "./ui.js";
+
+// onEdit(delay): a field changed; the preview follows after `delay` ms
+// (undefined: the usual pause while typing).
+export function jobForm({ onEdit }) {
+  const problems = h("div", { class: "problems", id: "form-problems", hidden: true, tabindex: "-1" });
+  const form = h("form", { novalidate: true, "aria-describedby": "form-problems", id: "job-form" });
+  const inputs = new Map(); // pointer -> {input, row, error, spec, def}
+
+  function fieldRow(s, spec) {
+    const { node, def } = fieldSchema(s, spec.pointer);
+    const id = fieldId(spec.pointer);
+    let input;
+    if (spec.type === "enum" && node?.enum) {
+      input = h("select", { id, name: spec.pointer }, node.enum.map((v) => h("option", { value: v }, v)));
+    } else if (spec.type === "text" || spec.type === "teeth") {
+      input = h("input", { id, name: spec.pointer, type: "text", autocomplete: "off",
+        placeholder: spec.type === "teeth" ? "auto, all or a number" : "" });
+    } else {
+      input = h("input", { id, name: spec.pointer, type: "number", step: spec.step || "any",
+        inputmode: "decimal", placeholder: spec.placeholder || "" });
+    }
+    const description = node?.description || "";
+    const hint = h("div", { class: "hint", id: id + "-hint", title: description }, hintText(node, def, spec));
+    input.setAttribute("aria-describedby", `${id}-hint ${id}-error`);
+    input.title = description;
+    const error = h("div", { class: "error", id: id + "-error", hidden: true });
+    const row = h("div", { class: "field", dataset: { pointer: spec.pointer } },
+      h("label", { for: id }, spec.label), input, h("span", { class: "unit" }, unitOf(spec.pointer)), hint, error);
+    inputs.set(spec.pointer, { input, row, error, spec, def });
+    input.addEventListener("input", () => { clearFieldError(spec.pointer); onEdit(); });
+    input.addEventListener("change", () => onEdit(0));
+    return row;
+  }
+
+  // The fields, grouped, from the schema's limits, units and defaults.
+  function build(schema) {
+    for (const [title, fields] of GROUPS) {
+      const grid = h("div", { class: "fields" });
+      for (const f of fields) grid.append(fieldRow(schema, f));
+      form.append(h("fieldset", {}, h("legend", {}, title), grid));
+    }
+  }
+
+  function fill(job) {
+    for (const [pointer, { input, def }] of inputs) {
+      let v = getPointer(job, pointer);
+      if (v === undefined && def !== undefined && typeof def !== "object") v = def;
+      input.value = formText(v);
+    }
+  }
+
+  function read() {
+    return jobFromValues([...inputs.values()].map(({ input, spec }) => [spec, input.value]));
+  }
+
+  // Empty fields show what the scene chose for them.
+  function showChosen(chosen) {
+    for (const [pointer, { input, spec }] of inputs) {
+      const v = chosen(pointer);
+      if (v !== undefined && typeof v !== "object") input.placeholder = `${spec.placeholder || "scene default"}: ${v}`;
+    }
+  }
+
+  function clearFieldError(pointer) {
+    const f = inputs.get(pointer);
+    if (!f) return;
+    f.row.classList.remove("invalid");
+    f.input.removeAttribute("aria-invalid");
+    f.error.hidden = true;
+    f.error.textContent = "";
+  }
+
+  function clearErrors() {
+    problems.hidden = true;
+    problems.replaceChildren();
+    for (const p of inputs.keys()) clearFieldError(p);
+  }
+
+  function fieldFor(pointer) {
+    const p = fieldPointerFor(pointer || "", [...inputs.keys()]);
+    return p === null ? null : inputs.get(p);
+  }
+
+  // The problems above the form; with atFields, also at the fields they concern.
+  function showProblems(errors, title, atFields) {
+    for (const e of errors) {
+      const f = atFields ? fieldFor(e.pointer) : null;
+      if (!f) continue;
+      f.row.classList.add("invalid");
+      f.input.setAttribute("aria-invalid", "true");
+      f.error.hidden = false;
+      f.error.textContent = f.error.textContent ? `${f.error.textContent} ${e.detail}` : e.detail;
+    }
+    const list = h("ul", {}, errors.map((e) => {
+      const f = atFields ? fieldFor(e.pointer) : null;
+      const where = e.pointer ? h("code", {}, e.pointer) : null;
+      return h("li", {}, f ? h("a", { href: "#" + f.input.id, onclick: (ev) => { ev.preventDefault(); f.input.focus(); } }, f.spec.label) : where,
+        f || where ? ": " : "", e.detail);
+    }));
+    put(problems, h("strong", {}, title || `${errors.length} problem${errors.length === 1 ? "" : "s"} with this job`), list);
+    problems.hidden = errors.length === 0;
+  }
+
+  // Where the keyboard goes after a refusal: the first marked field, or the list.
+  function focusProblems(atFields) {
+    const first = form.querySelector(".field.invalid input, .field.invalid select");
+    (atFields && first ? first : problems).focus();
+  }
+
+  return { form, problems, build, fill, read, showChosen, clearErrors, showProblems, focusProblems };
+}
