@@ -10,6 +10,7 @@
 #include <set>
 
 #include "render/colormap.hpp"
+#include "render/fillet_plot.hpp"
 #include "render/mesh_image.hpp"
 
 namespace gearsph::render {
@@ -127,3 +128,22 @@ TEST(RenderMesh, DivergingRangeIsSymmetricAndBadInputIsRefused) {
 
 }  // namespace
 }  // namespace gearsph::render
+
+// The static check's fillet curves as a picture: SPH alone, and with the FE
+// curves beside them (render/fillet_plot.hpp).
+TEST(FilletPlot, DrawsTheCurvesWithAndWithoutFe) {
+  const nlohmann::json sc = {
+      {"load_radius_m", 0.024},
+      {"fillet_curves",
+       {{"tension", {{"arc_m", {0.0, 0.001, 0.002}}, {"sigma1_Pa", {1e7, 4e7, 2e7}}}},
+        {"compression", {{"arc_m", {0.0, 0.001, 0.002}}, {"sigma3_Pa", {-1e7, -4e7, -2e7}}}}}}};
+  const nlohmann::json fe = {{"meshes",
+                              {{{"arc_m", {0.0, 0.002}},
+                                {"tension_sigma1_Pa", {1e7, 2e7}},
+                                {"compression_sigma3_Pa", {-1e7, -2e7}}}}}};
+  const std::vector<unsigned char> alone = gearsph::render::fillet_plot_png(sc, nullptr);
+  const std::vector<unsigned char> both = gearsph::render::fillet_plot_png(sc, fe);
+  ASSERT_GT(alone.size(), 1000u);
+  EXPECT_EQ(alone[1], 'P');  // \x89PNG
+  EXPECT_NE(alone, both);
+}

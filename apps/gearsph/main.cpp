@@ -14,6 +14,9 @@
 #ifdef GEARSPH_WITH_RESULTS
 #include "results/register_outputs.hpp"
 #endif
+#ifdef GEARSPH_WITH_RENDER
+#include "render/fillet_plot.hpp"
+#endif
 #ifdef GEARSPH_WITH_FE
 #include "fe/fe_check.hpp"
 #endif
@@ -183,6 +186,11 @@ int main(int argc, char** argv) {
 #ifdef GEARSPH_WITH_FE
   // Runs of jobs with "fe_check" (run, serve, worker) add the FE check.
   gearsph::fe::register_fe_check();
+#endif
+#ifdef GEARSPH_WITH_RENDER
+  // Static checks get their fillet curves as a picture (after the FE check,
+  // whose curves it draws beside them).
+  gearsph::render::register_fillet_plot();
 #endif
   if (argc < 2 || !std::strcmp(argv[1], "help") || !std::strcmp(argv[1], "--help") ||
       !std::strcmp(argv[1], "-h")) {

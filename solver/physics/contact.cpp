@@ -39,6 +39,10 @@ double contact_modulus(const Material& a, const Material& b) {
   return 1.0 / ((1.0 - a.nu * a.nu) / a.E + (1.0 - b.nu * b.nu) / b.E);
 }
 
+// Outline particles face each other when their normals are within 45
+// degrees of opposed: cos(135 deg).
+constexpr double kFacingCosine = 0.7071067811865476;
+
 // Most partners a particle has across a flat interface within r0 = dx on a
 // square lattice (three: straight across and the two diagonals are at
 // sqrt(2) dx, so within 1.5 dx at most 3 count).
@@ -150,12 +154,15 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
       if (surface) {
         // True-surface gap (contact_surface.hpp); normals turned with the material.
         if (!std::isfinite(p.surf_depth[i]) || !std::isfinite(p.surf_depth[j])) continue;
-        // Two particles on their outlines (body-fitted, depth 0) further
-        // apart than a spacing are not touching, whatever their tangent
-        // lines say: a corner beside a flank a spacing away passes the
-        // half-plane test.
+        // Two particles on their outlines (body-fitted, depth 0) touch only
+        // within a spacing of each other and with their outward normals
+        // within 45 degrees of opposed: a rack's tip corner beside a pinion
+        // flank passes the half-plane test of surface_pair from a spacing
+        // away (normals 134 degrees apart), and pressed the teeth apart
+        // where the neighbour's flank had 0.1 mm of play.
         if (p.surf_depth[i] == 0.0 && p.surf_depth[j] == 0.0 &&
-            dxij * dxij + dyij * dyij >= dx * dx) {
+            (dxij * dxij + dyij * dyij >= dx * dx ||
+             normal_x[i] * normal_x[j] + normal_y[i] * normal_y[j] > -kFacingCosine)) {
           continue;
         }
         const SurfacePair sp = surface_pair(dxij, dyij, normal_x[i], normal_y[i], normal_x[j],

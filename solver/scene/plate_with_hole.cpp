@@ -76,7 +76,7 @@ Scene build_plate_with_hole(const SceneInput& in) {
   Discretization& d = sim.discretization;
   if (d.dx <= 0) d.dx = fitted ? W / 20.0 : a / 5.0;
   const double fine = fitted ? (d.fine_dx > 0 ? d.fine_dx : std::min(d.dx, a / 10.0)) : d.dx;
-  const double grading = d.grading > 0 ? d.grading : 0.25;
+  const double grading = d.grading > 0 ? d.grading : geometry::kDefaultGrading;
   if (fine > d.dx) {
     throw JobError("/discretization/fine_spacing_m",
                    "the fine spacing must not exceed the bulk spacing");

@@ -39,7 +39,7 @@ Scene build_thick_cylinder(const SceneInput& in) {
   Discretization& d = sim.discretization;
   if (d.dx <= 0) d.dx = (b - a) / 10.0;
   const double fine = fitted ? (d.fine_dx > 0 ? d.fine_dx : std::min(d.dx, (b - a) / 25.0)) : d.dx;
-  const double grading = d.grading > 0 ? d.grading : 0.25;
+  const double grading = d.grading > 0 ? d.grading : geometry::kDefaultGrading;
   if (fine > d.dx) {
     throw JobError("/discretization/fine_spacing_m",
                    "the fine spacing must not exceed the bulk spacing");

@@ -277,6 +277,10 @@ void gear(std::vector<Cell>& out) {
                    {{"type", "rack_pinion"},
                     {"pinion", {{"omega_rad_s", -15.0 * k}}},
                     {"rack", {{"velocity_m_s", -0.353 * k}}}}},
+                  // The paper's lattice: the study compares the paper's
+                  // methods, some of which (updated Lagrangian) take one
+                  // smoothing length only.
+                  {"discretization", {{"particles", "lattice"}}},
                   {"method", m},
                   {"time", {{"end_s", 0.002}}},
                   {"output", history(400)}};

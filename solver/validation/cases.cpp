@@ -231,14 +231,15 @@ std::vector<Case> cases(bool quick) {
                  "Lewis Ft / (b m Y), Y = 0.245 (z = 12), load at the tip", 0.40, gear_static_job(),
                  relative("static_check/nominal_bending_stress_Pa", "static_check/lewis_Pa"),
                  Case::Kind::Relative,
-                 "Lewis's Y assumes the load at the tip; held at its starting position the "
-                 "tooth is loaded near r = 25 mm, where ISO's Y_F is 0.6 of its tip value"});
+                 "Lewis's Y assumes the load at the tip; the static check loads the pitch point "
+                 "(r = 24 mm), where ISO's Y_F is 0.6 of its tip value"});
   out.push_back({"gear_static/mesh_stiffness", "7", "single-pair mesh stiffness [N/(mm um)]",
                  "ISO 6336-1 c' (method B)", 0.25, gear_static_job(),
                  relative("mesh_stiffness_N_per_mm_um", "iso_mesh_stiffness_N_per_mm_um"),
                  Case::Kind::Relative,
-                 "depends on the spacing (5.7, 5.8, 11.5 N/(mm um) at 1, 0.5, 0.25 mm): a "
-                 "few particle pairs carry the contact (docs/gears.md)"});
+                 "depends on the spacing (lattice: 5.7, 5.8, 11.5 N/(mm um) at 1, 0.5, 0.25 mm; "
+                 "body-fitted default: 6.1): a few particle pairs carry the contact "
+                 "(docs/gears.md)"});
   // Stress at a curved free boundary, recovered on the true outline
   // (validation.md section 10).
   out.push_back({"kirsch/peak_hoop_stress", "10", "peak hoop stress at the hole [Pa]",
