@@ -128,6 +128,9 @@ nlohmann::json describe(Services& s, const PreparedJob& job, const JobEstimate& 
       {"particles", estimate.particles},
       {"bodies", std::move(bodies)},
       {"spacing_m", sim.discretization.dx},
+      {"finest_spacing_m", p.spacing.empty()
+                               ? sim.discretization.dx
+                               : *std::min_element(p.spacing.begin(), p.spacing.end())},
       {"dt_s", job.time_step.dt},
       {"dt_limit_s", job.time_step.dt_limit},
       {"end_s", job.end_s},

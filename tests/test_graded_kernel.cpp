@@ -36,8 +36,13 @@ TEST(GradedKernel, TheSetIsGradedEightToOne) {
   EXPECT_GE(*hi / *lo, 7.5);
 }
 
-// The smooth kernels' sums stay within 2 % of one across the 8:1 grading.
-// The paper's quartic is left out: with its cusp (f'(0) = -64) and h = dx
+// The smooth kernels' sums stay within a few per cent of one across the 8:1
+// grading (validation.md section 1). Measured: 2.1-2.4 % at worst in the
+// graded zone against 0.7-1.5 % on relaxed uniform 2 mm particles; the
+// excess is the second-order term of a smoothing length that varies across
+// the support (h_ij = (h_i + h_j) / 2 cancels the first-order one). The
+// pair's smaller length instead of the mean gives 3.3-4.3 %, the larger
+// 6.3-6.9 %. The paper's quartic is left out: with its cusp (f'(0) = -64) and h = dx
 // its own term is 0.46 of the sum, so its sums depend on the packing, not
 // the grading: 1.10-1.13 in the uniform 2 mm bulk of this plate, whose
 // relaxed packing is nearly hexagonal (docs/method.md). The total-Lagrangian
@@ -81,7 +86,7 @@ TEST_P(GradedKernelSums, StayNearOneInTheInterior) {
     worst = std::max(worst, std::abs(sum[i] - 1.0));
   }
   EXPECT_GT(interior, 20u);
-  EXPECT_LT(worst, 0.02) << "kernel sum in the graded interior";
+  EXPECT_LT(worst, 0.03) << "kernel sum in the graded interior";
 }
 
 INSTANTIATE_TEST_SUITE_P(SmoothKernels, GradedKernelSums,

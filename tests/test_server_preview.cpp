@@ -89,16 +89,27 @@ TEST_F(ServerPreview, PaperCaseGeometryAgreesWithSubmission) {
 
 TEST_F(ServerPreview, ParametersChangeTheGeometry) {
   auto c = server_->client();
+  // On the paper's lattice a larger pinion at half the spacing has more than
+  // three times the particles (body-fitted particles keep the fillets' own
+  // spacing, so the rim's spacing moves their count less).
+  json paper_lattice = kPaperCase;
+  paper_lattice["discretization"] = {{"particles", "lattice"}};
   json bigger = kPaperCase;
   bigger["scene"]["pinion"] = {{"teeth", 20}};
-  bigger["discretization"] = {{"spacing_mm", 0.5}};
-  const json a = c.post_json("/preview", kPaperCase.dump()).json();
+  bigger["discretization"] = {{"spacing_mm", 0.5}, {"particles", "lattice"}};
+  const json a = c.post_json("/preview", paper_lattice.dump()).json();
   const ClientResponse r = c.post_json("/preview", bigger.dump());
   ASSERT_EQ(r.status, 200u) << r.body;
   const json b = r.json();
   EXPECT_DOUBLE_EQ(b.at("spacing_m").get<double>(), 0.5e-3);
   EXPECT_DOUBLE_EQ(b.at("model").at("pinion").at("pitch_radius_m").get<double>(), 0.04);
   EXPECT_GT(b.at("particles").get<std::int64_t>(), 3 * a.at("particles").get<std::int64_t>());
+
+  json bigger_fitted = kPaperCase;
+  bigger_fitted["scene"]["pinion"] = {{"teeth", 20}};
+  const json fa = c.post_json("/preview", kPaperCase.dump()).json();
+  const json fb = c.post_json("/preview", bigger_fitted.dump()).json();
+  EXPECT_GT(fb.at("particles").get<std::int64_t>(), fa.at("particles").get<std::int64_t>());
 }
 
 TEST_F(ServerPreview, FallbackEstimateOnAServerWithoutFinishedJobs) {

@@ -1,6 +1,7 @@
 #include "solver/geometry/spacing_field.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
@@ -51,7 +52,7 @@ void SpacingField::add_feature(const std::vector<Point>& line, double spacing, b
 }
 
 double SpacingField::operator()(Point p) const {
-  double s = coarse_;
+  double s = std::numeric_limits<double>::infinity();
   const BPoint q(p.x, p.y);
   for (const auto& [spacing, tree] : index_->by_spacing) {
     if (spacing >= s) break;  // ascending: no later group can give less
@@ -59,7 +60,11 @@ double SpacingField::operator()(Point p) const {
       s = std::min(s, spacing + grading_ * bg::distance(q, *it));
     }
   }
-  return s;
+  // The graded spacing meets the coarse one without a kink: a quadratic
+  // smooth minimum over a band of width k, C1 and never above either.
+  const double k = kSaturationBand * coarse_;
+  const double gap = std::max(k - std::abs(s - coarse_), 0.0) / k;
+  return std::min(s, coarse_) - 0.25 * k * gap * gap;
 }
 
 }  // namespace gearsph::geometry

@@ -26,6 +26,9 @@
 namespace gearsph::geometry {
 
 constexpr double kDefaultGrading = 0.12;
+// The width, as a fraction of the coarse spacing, over which the graded
+// spacing rounds into the coarse one.
+constexpr double kSaturationBand = 0.2;
 
 class SpacingField {
  public:

@@ -104,7 +104,7 @@ try {
   const estimate = await page.locator("#estimate").textContent();
   check(/Particles/.test(estimate) && /Time steps/.test(estimate), "the estimate lists particles and steps");
   check(/estimate/.test(await page.locator("#estimate .note").textContent()), "the run time is labelled as an estimate");
-  check(/pinion: \d+ free/.test(await page.locator(".legend").textContent()), "the preview legend counts the pinion's particles");
+  check(/pinion: [\d,]+ free/.test(await page.locator(".legend").textContent()), "the preview legend counts the pinion's particles");
   const previewPixels = await page.evaluate(() => {
     const c = document.getElementById("preview-canvas");
     const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;

@@ -140,7 +140,9 @@ export function submitView(root) {
         const chosen = { "/time/end_s": doc.end_s, "/time/dt_s": doc.dt_s, "/discretization/spacing_mm": doc.spacing_m * 1e3 };
         jobs.showChosen((pointer) => (pointer in chosen ? chosen[pointer] : getPointer(doc.job, pointer)));
         if (!doc.accepted) showProblems(doc.errors, "This server would refuse this job");
-        el.previewState.textContent = `${int(doc.particles)} particles, dx = ${eng(doc.spacing_m, "m")}`;
+        el.previewState.textContent = doc.finest_spacing_m < 0.999 * doc.spacing_m
+          ? `${int(doc.particles)} particles, spacing ${eng(doc.finest_spacing_m, "m")} to ${eng(doc.spacing_m, "m")}`
+          : `${int(doc.particles)} particles, dx = ${eng(doc.spacing_m, "m")}`;
         draw(doc, false);
         showEstimate(el.estimate, doc);
         showModel(el.model, doc);
