@@ -39,7 +39,10 @@ BENCHMARK(BM_KernelGradient<gearsph::kernels::WendlandC2>);
 gearsph::PreparedJob prepared(const char* scene) {
   const nlohmann::json plate = {
       {"scene", {{"type", "plate"}, {"length_m", 0.2}, {"thickness_m", 0.02}, {"Vf", 0.01}}}};
-  const nlohmann::json gear = {{"scene", {{"type", "rack_pinion"}}}};
+  nlohmann::json gear = {{"scene", {{"type", "rack_pinion"}}}};
+  // The gear with hourglass control (Ganzenmueller 2015), to price it.
+  if (std::string(scene) == "gear_hourglass")
+    gear["method"] = {{"hourglass", {{"coefficient", 0.5}}}};
   gearsph::PreparedJob job = gearsph::prepare_job(std::string(scene) == "plate" ? plate : gear, 1);
   gearsph::integrate::initialise(job.scene.sim);
   for (int s = 0; s < 10; ++s) gearsph::integrate::step(job.scene.sim);
@@ -78,9 +81,11 @@ BENCHMARK_CAPTURE(BM_TotalLagrangianStress, plate, "plate");
 BENCHMARK_CAPTURE(BM_TotalLagrangianStress, gear, "gear");
 BENCHMARK_CAPTURE(BM_TotalLagrangianMomentum, plate, "plate");
 BENCHMARK_CAPTURE(BM_TotalLagrangianMomentum, gear, "gear");
+BENCHMARK_CAPTURE(BM_TotalLagrangianMomentum, gear_hourglass, "gear_hourglass");
 BENCHMARK(BM_Contact);
 BENCHMARK_CAPTURE(BM_Step, plate, "plate");
 BENCHMARK_CAPTURE(BM_Step, gear, "gear");
+BENCHMARK_CAPTURE(BM_Step, gear_hourglass, "gear_hourglass");
 
 }  // namespace
 

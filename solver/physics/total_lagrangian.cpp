@@ -334,8 +334,12 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
     double sx = sums[4 * i], sy = sums[4 * i + 1], vsx = sums[4 * i + 2], vsy = sums[4 * i + 3];
     double hsx = kHourglass ? hg_sum[0][i] : 0.0, hsy = kHourglass ? hg_sum[1][i] : 0.0;
     std::uint32_t approaching = 0;
+    // Inlined by force: with hourglass control GCC kept this lambda out of
+    // line, its sums and array addresses went through the closure to memory
+    // at every pair, and the control cost 3.6 times the pass instead of 2
+    // (docs/speed-accuracy.md).
     auto pairs = [&](std::uint32_t k0, std::uint32_t k1, double* to, double* const* hg_to,
-                     std::size_t base) {
+                     std::size_t base) __attribute__((always_inline)) {
       for (std::uint32_t k = k0; k < k1; ++k) {
         const std::uint32_t j = jj[k];
         const std::size_t t = j - base;
