@@ -3,8 +3,9 @@
 // geometry preview, an invalid value refused at its field, two short jobs
 // submitted (form and JSON), their progress followed live, a result opened
 // (image, frames, zoom, charts), the two compared, a running job cancelled,
-// the keyboard, a narrow window. Any console error or page error fails the test. Screenshots go
-// to --screenshots DIR for people to look at.
+// a static gear check with the FE check (the fillet stress panel), the
+// keyboard, a narrow window. Any console error or page error fails the
+// test. Screenshots go to --screenshots DIR for people to look at.
 //
 //   node tests/browser/dashboard.test.mjs --gearsph build/gearsph --screenshots build/browser-screenshots
 import { spawn } from "node:child_process";
@@ -77,9 +78,13 @@ page.on("console", (msg) => {
 page.on("pageerror", (e) => consoleErrors.push(`page error: ${e.message}`));
 
 // The whole page, or (viewport) what the window shows: the job form's
-// sticky submit bar is only where a user sees it in the latter.
-async function shot(name, { viewport = false } = {}) {
-  await page.screenshot({ path: join(SHOTS, `${name}.png`), fullPage: !viewport });
+// sticky submit bar is only where a user sees it in the latter; or
+// (element) one part of the whole page. The whole page is taken from the
+// top: scrolled, the sticky top bar would be drawn across it.
+async function shot(name, { viewport = false, element = null } = {}) {
+  if (!viewport) await page.evaluate(() => window.scrollTo(0, 0));
+  const clip = element ? await element.boundingBox() : undefined;
+  await page.screenshot({ path: join(SHOTS, `${name}.png`), fullPage: !viewport, clip });
   console.log(`screenshot: ${join(SHOTS, `${name}.png`)}`);
 }
 
@@ -187,6 +192,24 @@ try {
     }
   }
   console.log("ok: both jobs reached successful in the live list");
+  // A static gear check with the FE check, through the API; it runs while
+  // the next steps look at A and B. A server without gmsh or CalculiX
+  // refuses it (501, fe-unavailable): then only the SPH part is checked.
+  const staticJob = (feCheck) => ({
+    name: feCheck ? "fillet-fe-check" : "fillet-static",
+    scene: { type: "rack_pinion", quasi_static: true, contact_point: "pitch", fe_check: feCheck,
+      pinion: { omega_rad_s: 0 }, rack: { velocity_m_s: 0, load_N: 1000 } },
+  });
+  let feRan = true;
+  let staticPost = await page.request.post(`${server.url}/jobs`, { data: staticJob(true) });
+  if (staticPost.status() === 501) {
+    const why = (await staticPost.json()).detail;
+    console.log(`SKIP: the FE part of the fillet panel's checks: ${why}`);
+    feRan = false;
+    staticPost = await page.request.post(`${server.url}/jobs`, { data: staticJob(false) });
+  }
+  check(staticPost.status() === 201, `a static gear check submitted (${staticPost.status()})`);
+  const idF = (await staticPost.json()).jobID;
   check(await page.locator(`tr[data-job="${idA}"] .progress`).getAttribute("aria-valuenow") === "100",
     "job A's progress bar shows 100 %");
   await shot("05-jobs-finished");
@@ -206,6 +229,7 @@ try {
   await imageLoaded();
   check(await page.evaluate(() => document.getElementById("field-image").naturalWidth) === 1280, "the von Mises image is rendered");
   check(await page.locator(".chart .uplot").count() >= 3, "three history charts are drawn");
+  check(await page.locator("#fillet").count() === 0, "a dynamic run has no fillet stress panel");
   const summary = await page.locator("#summary-table").textContent();
   check(/Max von Mises stress/.test(summary) && /Velocity-stability time/.test(summary), "the summary shows max stress and stability time");
   for (const name of ["results.h5", "results.xmf", "history.csv", "summary.json"]) {
@@ -266,7 +290,63 @@ try {
   console.log("ok: the running job was cancelled from the list and shows as dismissed");
   await shot("09-jobs-cancelled");
 
-  // 9. Keyboard: the view tabs are links reached with Tab.
+  // 9. The static gear check: the fillet stress panel, SPH against FE.
+  const staticStarted = Date.now();
+  for (;;) {
+    const job = await (await page.request.get(`${server.url}/jobs/${idF}`)).json();
+    if (job.status === "successful") break;
+    if (job.status !== "accepted" && job.status !== "running") throw new Error(`static job ${idF} ${job.status}: ${job.message}`);
+    if (Date.now() - staticStarted > 300_000) throw new Error(`static job ${idF} still ${job.status} after 300 s`);
+    await page.waitForTimeout(500);
+  }
+  await page.goto(`${server.url}/#/jobs/${idF}`);
+  const panel = page.locator("#fillet");
+  await panel.locator("#chart-fillet .uplot").waitFor();
+  check(await page.locator("#fillet-head").textContent() === "Fillet stress (tooth 0)", "the fillet stress panel is shown");
+  check(await panel.getAttribute("aria-labelledby") === "fillet-head", "the panel is labelled by its heading");
+  const legend = await panel.locator(".u-legend .u-series").allTextContents();
+  check(legend.some((l) => l.startsWith("SPH σ1")) && legend.some((l) => l.startsWith("SPH σ3")),
+    `the chart has the SPH tension and compression curves (${legend.length} legend entries)`);
+  // uPlot draws its axes on the canvas: the legend under the cursor tells the units.
+  await panel.locator("#chart-fillet .u-over").hover();
+  const xLabel = await panel.locator(".u-legend .u-series").first().locator(".u-label").textContent();
+  const yValues = await panel.locator(".u-legend .u-series .u-value").allTextContents();
+  check(xLabel === "s [mm]" && yValues.some((v) => / MPa$/.test(v)),
+    `the curves are stresses in MPa against arc length in mm (${xLabel}; ${yValues.slice(1, 3).join(", ")})`);
+  const tableHead = await panel.locator("#fillet-table thead").textContent();
+  check(await panel.locator("#fillet-table tbody tr").count() === 4, "the table has the four fillet quantities");
+  if (feRan) {
+    check(legend.some((l) => l.startsWith("FE σ1")) && legend.some((l) => l.startsWith("FE σ3")),
+      "the FE curves are overlaid, named FE in the legend");
+    check(/SPH/.test(tableHead) && /FE/.test(tableHead) && /error/.test(tableHead), `the table has SPH, FE and error columns: ${tableHead}`);
+    const errors = await panel.locator("#fillet-table tbody td:last-child").allTextContents();
+    check(errors.every((e) => /^[+−]?\d+\.\d %$/.test(e)), `every quantity has its error in %: ${errors.join(", ")}`);
+    await page.waitForFunction(() => ["fe-field-image", "sph-fillet-image"].every((i) => document.getElementById(i)?.complete));
+    const widths = await page.evaluate(() => ["fe-field-image", "sph-fillet-image"].map((i) => document.getElementById(i).naturalWidth));
+    check(widths.every((w) => w > 0), `the FE and SPH field images load side by side (${widths.join(", ")} px wide)`);
+    check((await panel.locator("#fe-field-image").getAttribute("src")).endsWith("fe_max_principal_tooth0.png"),
+      "the FE field is the largest principal stress of tooth 0");
+    check((await panel.locator("#fe-field-image").getAttribute("alt")).startsWith("FE largest principal"), "the FE image has its alt text");
+    for (const name of ["fillet_curves.png", "fe_fillet_curves.csv"]) {
+      const href = await panel.locator(`header a[download="${name}"]`).getAttribute("href");
+      check(href && (await page.request.get(server.url + href)).ok(), `the panel links ${name}`);
+    }
+  } else {
+    check(/ISO 6336-3/.test(tableHead), `without FE the table compares with ISO 6336-3: ${tableHead}`);
+  }
+  await page.mouse.move(0, 0); // no cursor values in the legend
+  await shot("12-result-fillet");
+  await shot("12-fillet-panel", { element: panel });
+  if (feRan) {
+    await page.selectOption("#fe-field-select", "fe_von_mises_tooth0.png");
+    await page.waitForFunction(() => {
+      const img = document.getElementById("fe-field-image");
+      return img.src.endsWith("fe_von_mises_tooth0.png") && img.complete && img.naturalWidth > 0;
+    });
+    console.log("ok: the FE field switches to von Mises");
+  }
+
+  // 10. Keyboard: the view tabs are links reached with Tab.
   await page.locator(".brand").focus();
   await page.keyboard.press("Tab");
   await page.keyboard.press("Tab");
@@ -274,7 +354,7 @@ try {
   await page.waitForURL(/#\/jobs$/);
   console.log("ok: Tab and Enter reach the job list");
 
-  // 10. A narrow window.
+  // 11. A narrow window.
   await page.setViewportSize({ width: 420, height: 860 });
   await page.goto(`${server.url}/#/submit`);
   await waitForPreview();
@@ -284,6 +364,12 @@ try {
   await page.goto(`${server.url}/#/jobs/${idA}`);
   await imageLoaded();
   await shot("11-narrow-result");
+  await page.goto(`${server.url}/#/jobs/${idF}`);
+  await page.locator("#chart-fillet .uplot").waitFor();
+  if (feRan) await page.waitForFunction(() => document.getElementById("fe-field-image")?.complete);
+  const filletOverflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);
+  check(filletOverflow <= 1, `no horizontal scrolling of the fillet panel at 420 px (overflow ${filletOverflow} px)`);
+  await shot("13-narrow-fillet", { element: page.locator("#fillet") });
 
   check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ":\n  " + consoleErrors.join("\n  ") : ""}`);
   exitCode = failures.length ? 1 : 0;

@@ -1,6 +1,7 @@
-// Time-history charts with uPlot (served from /vendor/, installed by npm).
-// Data come in SI; each chart picks the prefix that keeps its numbers
-// readable (a 20 µs run is shown in µs, 300 MPa as MPa, not 3e8 Pa).
+// Line charts with uPlot (served from /vendor/, installed by npm): time
+// histories, and the stress along a fillet. Data come in SI; each chart
+// picks the prefix that keeps its numbers readable (a 20 µs run is shown
+// in µs, 300 MPa as MPa, not 3e8 Pa).
 import uPlot from "../vendor/uPlot.esm.js";
 
 export const PALETTE = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22"];
@@ -33,16 +34,44 @@ function tickLabels(u, splits, axis, space, increment) {
   return splits.map((v) => (v === null ? "" : (Math.abs(v) < increment * 1e-6 ? 0 : v).toFixed(d)));
 }
 
+// A dashed vertical line at each mark, labelled at the top of the plot.
+function drawMarks(marks, scale) {
+  return (u) => {
+    const { ctx } = u;
+    const { top, height } = u.bbox;
+    ctx.save();
+    ctx.strokeStyle = "#6b7280";
+    ctx.fillStyle = "#5b6573";
+    ctx.lineWidth = devicePixelRatio;
+    ctx.setLineDash([3 * devicePixelRatio, 3 * devicePixelRatio]);
+    ctx.font = `${11 * devicePixelRatio}px system-ui, sans-serif`;
+    for (const m of marks) {
+      const x = Math.round(u.valToPos(m.value / scale, "x", true));
+      ctx.beginPath();
+      ctx.moveTo(x, top);
+      ctx.lineTo(x, top + height);
+      ctx.stroke();
+      ctx.fillText(m.label, x + 4 * devicePixelRatio, top + 12 * devicePixelRatio);
+    }
+    ctx.restore();
+  };
+}
+
 // A chart in `el` that follows the element's width.
 //   time_s: sample times [s]; series: [{label, values [SI], colour?, dash?}]
 //   quantity/unit: the y axis ("force", "N"); prefix: false keeps the unit as is.
-export function lineChart(el, { title, time_s, quantity, unit, prefix = true, series, height = 260 }) {
+//   x: another abscissa than time, {values [SI], quantity, symbol, unit}
+//   ("arc length", "s", "m"); its charts do not follow the time cursor.
+//   marks: [{value [SI, x], label}] drawn as vertical lines.
+export function lineChart(el, { title, time_s, x, quantity, unit, prefix = true, series, marks = [], height = 260 }) {
   el.replaceChildren();
   const heading = document.createElement("h3");
   heading.textContent = title;
   const holder = document.createElement("div");
   el.append(heading, holder);
-  const [ts, tp] = prefixFor(maxAbs([time_s]));
+  const abscissa = x || { values: time_s, quantity: "time", symbol: "t", unit: "s" };
+  const [ts, tp] = prefixFor(maxAbs([abscissa.values]));
+  const xUnit = `${tp}${abscissa.unit}`;
   const [ys, yp] = prefix ? prefixFor(maxAbs(series.map((s) => s.values))) : [1, ""];
   const yUnit = `${yp}${unit}`;
   // NaN (a quantity not defined at a sample) is a gap; undefined (a sample
@@ -54,11 +83,11 @@ export function lineChart(el, { title, time_s, quantity, unit, prefix = true, se
   const opts = {
     width: width(),
     height,
-    cursor: { drag: { x: true, y: false }, sync: { key: "gearsph" } },
+    cursor: { drag: { x: true, y: false }, sync: x ? undefined : { key: "gearsph" } },
     scales: { x: { time: false } },
-    axes: [axis(`time [${tp}s]`, 40), axis(`${quantity} [${yUnit}]`, 64)],
+    axes: [axis(`${abscissa.quantity} [${xUnit}]`, 40), axis(`${quantity} [${yUnit}]`, 64)],
     series: [
-      { label: `t [${tp}s]`, value: (u, v) => (v === null || v === undefined ? "—" : v.toPrecision(4)) },
+      { label: `${abscissa.symbol} [${xUnit}]`, value: (u, v) => (v === null || v === undefined ? "—" : v.toPrecision(4)) },
       ...series.map((s, k) => ({
         label: s.label,
         stroke: s.colour || PALETTE[k % PALETTE.length],
@@ -69,15 +98,16 @@ export function lineChart(el, { title, time_s, quantity, unit, prefix = true, se
       })),
     ],
     legend: { live: true },
+    hooks: marks.length ? { draw: [drawMarks(marks, ts)] } : {},
   };
-  const plot = new uPlot(opts, [scale(time_s, ts), ...series.map((s) => scale(s.values, ys))], holder);
+  const plot = new uPlot(opts, [scale(abscissa.values, ts), ...series.map((s) => scale(s.values, ys))], holder);
   const ro = new ResizeObserver(() => {
     const w = width();
     if (Math.abs(w - plot.width) > 2) plot.setSize({ width: w, height });
   });
   ro.observe(el);
   el.setAttribute("role", "img");
-  el.setAttribute("aria-label", `${title}: ${series.map((s) => s.label).join(", ")} against time`);
+  el.setAttribute("aria-label", `${title}: ${series.map((s) => s.label).join(", ")} against ${abscissa.quantity}`);
   return { plot, destroy() { ro.disconnect(); plot.destroy(); } };
 }
 

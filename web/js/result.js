@@ -1,11 +1,12 @@
 // One job: live progress while it runs; once it has finished, the rendered
-// field with a frame slider, play and zoom, the time-history charts, the
-// summary numbers and the files.
+// field with a frame slider, play and zoom, the fillet stress of a static
+// gear check, the time-history charts, the summary numbers and the files.
 import { ApiError, get, text } from "./api.js";
 import { lineChart } from "./charts.js";
 import { events } from "./events.js";
 import { bytes, duration, eng, eta, int, sig } from "./format.js";
 import { cancelJob, progressBar, statusBadge } from "./job-parts.js";
+import { filletPanel } from "./result-fillet.js";
 import { frameTimes, historyCharts, meshingZone, parseCsv } from "./results-data.js";
 import { h, put } from "./ui.js";
 
@@ -116,8 +117,11 @@ export function resultView(root, id) {
     // The image on show, also offered with the other downloads.
     const pngDownload = h("a", { class: "button small", id: "png-download", hidden: times.length === 0 },
       "image.png", h("span", { class: "muted" }, "this frame"));
-    content.replaceChildren(
+    const fillet = filletPanel(id, summary, results.files);
+    if (fillet) charts.push(fillet);
+    put(content,
       h("div", { class: "split" }, viewer(summary, times, pngDownload), summaryPanel(summary, results.files, pngDownload)),
+      fillet?.section,
       h("section", { class: "panel", "aria-labelledby": "charts-head" },
         h("header", {}, h("h2", { id: "charts-head" }, "Time histories"),
           h("span", { class: "muted" }, "drag to zoom in time, double-click to reset")),
@@ -129,6 +133,7 @@ export function resultView(root, id) {
       holder.append(el);
       charts.push(lineChart(el, { ...c, time_s: hist.data.time_s }));
     }
+    await fillet?.draw();
   }
 
   function viewer(summary, times, pngDownload) {
