@@ -1,6 +1,7 @@
 #include "fe/fe_check.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -299,6 +300,10 @@ nlohmann::json run_fe_check(const nlohmann::json& job, const std::filesystem::pa
   }
   s["load_radius_m"] = ref.load.radius_m;
   s["tooth0_force_N"] = c.normal_force_N;
+  // The colour scale of fe_max_principal_tooth0.png, for an SPH field to be
+  // drawn on the same one.
+  const std::array<double, 2> range = root_image_range_Pa(ref);
+  s["image_range_Pa"] = {range[0], range[1]};
   add_convergence(meshes, s);
   s["iso_6336_3"] = {
       {"method", "ISO 6336-3:2006 method B, sigma_F0 = F_t / (b m_n) Y_F Y_S at the load radius"},
@@ -366,6 +371,7 @@ nlohmann::json fe_comparison(const nlohmann::json& sph_summary, const nlohmann::
                    {"load_radius_m", fe.at("load").at("load_radius_m")},
                    {"source", fe.at("load").at("source")}};
   block["iso_sigma_F0_Pa"] = fe.at("iso_6336_3").at("sigma_F0_Pa");
+  if (fe.contains("image_range_Pa")) block["image_range_Pa"] = fe.at("image_range_Pa");
   block["coarse_fine_difference"] = fe.value("coarse_fine_difference", nlohmann::json());
   return block;
 }

@@ -7,6 +7,7 @@
 
 #include "render/mesh_image.hpp"
 #include "render/plot_image.hpp"
+#include "solver/gear/fillet.hpp"
 
 namespace gearsph::fe {
 
@@ -46,14 +47,13 @@ render::MeshImage field_image(const GearFeResult& r, const std::vector<double>& 
 }
 
 // Tooth 0 with both its fillets and a little of the rim above the spaces
-// (gear frame: tooth 0 along -y).
+// (gear frame: tooth 0 along -y): the window the SPH static check gives as
+// tooth0_box_m, so that its field can be drawn in the same one.
 render::Window tooth0_window(const GearFeResult& r) {
   double r_tip = 0.0;
   for (const Point& p : r.outline) r_tip = std::max(r_tip, geometry::norm(p));
-  const Point a = r.fillets.tension.points.front(), b = r.fillets.compression.points.front();
-  const double half = 1.15 * std::max(std::abs(a.x), std::abs(b.x));
-  const double space_y = std::max(a.y, b.y), height = r_tip + space_y;
-  return {-half, -r_tip - 0.04 * height, half, space_y + 0.25 * height};
+  const auto [x0, y0, x1, y1] = gear::tooth_window(r.fillets, r_tip);
+  return {x0, y0, x1, y1};
 }
 
 // The zoomed figures are about as tall as wide, like tooth 0.
@@ -82,7 +82,7 @@ std::vector<std::string> write_fe_images(const std::vector<GearFeResult>& meshes
   // contact zone under the load goes beyond and takes the end colour.
   const double fillet_max =
       std::max(std::abs(r.stress.tension.stress_Pa), std::abs(r.stress.compression.stress_Pa));
-  const double cap = 1.25 * fillet_max;
+  const double cap = root_image_range_Pa(r)[1];
   // The load's contact zone goes beyond the range (its end colour).
   const std::string off_scale = vm_max > cap ? " (load zone off scale)" : "";
   const render::Window zoom = tooth0_window(r);

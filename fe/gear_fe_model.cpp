@@ -314,6 +314,12 @@ std::vector<double> default_fillet_sizes(const geometry::PinionGeometry& pinion)
   return {coarse, 0.5 * coarse};
 }
 
+std::array<double, 2> root_image_range_Pa(const GearFeResult& r) {
+  const double cap = 1.25 * std::max(std::abs(r.stress.tension.stress_Pa),
+                                     std::abs(r.stress.compression.stress_Pa));
+  return {-cap, cap};
+}
+
 GearFeResult solve_gear_fe(const GearFeCase& c, const GearMeshSizes& sizes, double sample_step_m,
                            const FeTools& tools, const std::filesystem::path& work_dir,
                            const std::string& name, int threads, double timeout_s) {

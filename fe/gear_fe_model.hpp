@@ -26,6 +26,7 @@
 //    (Saint-Venant). A patch that would run over the tip corner is moved
 //    down the flank to end at the corner (the load radius reported is the
 //    patch centre's).
+#include <array>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -93,6 +94,13 @@ struct GearFeResult {
   double curve_to_mesh_m = 0.0;  // largest distance of a fillet sample from the mesh boundary
   double mesh_s = 0.0, solve_s = 0.0;
 };
+
+// The colour scale of the stress figures of tooth 0 [Pa]: +-1.25 times the
+// larger fillet peak, so the fillets are read in full and the load's
+// contact zone goes beyond (its end colour). fe_images.cpp draws the FE
+// field with it; fe_summary.json gives it (image_range_Pa) for the SPH field
+// that the dashboard draws beside.
+std::array<double, 2> root_image_range_Pa(const GearFeResult& r);
 
 // Builds, meshes and solves the model in `work_dir` (files `name`.geo,
 // .msh, .inp, .frd, ... stay there). `sample_step_m`: spacing of the fillet

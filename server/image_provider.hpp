@@ -15,6 +15,9 @@ struct ImageRequest {
   std::string field;                            // e.g. "von_mises"; [A-Za-z0-9_]+
   std::int64_t frame = -1;                      // snapshot index; -1: the last one
   std::optional<std::array<double, 4>> zoom_m;  // x0, y0, x1, y1 [m], x0 < x1, y0 < y1
+  // The colour scale, lo < hi in the field's SI unit; values beyond take the
+  // end colours. Default: from the frame's values.
+  std::optional<std::array<double, 2>> range;
 };
 
 struct ImageResult {

@@ -64,6 +64,13 @@ std::string short_number(double v) {
   return buf;
 }
 
+// Round-trips: the shortest text that reads back as v.
+std::string exact_number(double v) {
+  char buf[32];
+  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  return ec == std::errc() ? std::string(buf, end) : short_number(v);
+}
+
 }  // namespace
 
 Response files(Services& s, Request& req) {
@@ -144,6 +151,19 @@ Response image(Services& s, Request& req) {
     ir.zoom_m = box;
     cache += "&zoom=" + short_number(box[0]) + "," + short_number(box[1]) + "," +
              short_number(box[2]) + "," + short_number(box[3]);
+  }
+  if (auto r = req.query_value("range")) {
+    const auto comma = r->find(',');
+    const auto lo = finite_number(std::string_view(*r).substr(0, comma));
+    const auto hi = comma == std::string::npos
+                        ? std::nullopt
+                        : finite_number(std::string_view(*r).substr(comma + 1));
+    if (!lo || !hi || !(*lo < *hi)) {
+      return bad_parameter(req, "range is lo,hi in the field's SI unit with lo < hi");
+    }
+    ir.range = std::array<double, 2>{*lo, *hi};
+    // Full precision: two ranges that differ are two images.
+    cache += "&range=" + exact_number(*lo) + "," + exact_number(*hi);
   }
 
   if (!s.config.image_provider) {

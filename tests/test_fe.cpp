@@ -6,6 +6,7 @@
 // and ccx skip, saying why, where they are missing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -463,6 +464,10 @@ TEST(FeGear, FilletStressAgainstIsoAtPitchHpstcAndTip) {
     // circle, the compression fillet's lowest stress is a compression.
     EXPECT_GT(s.at("fillet_tension_peak_radius_m").get<double>(), 0.019);
     EXPECT_LT(s.at("fillet_compression_peak_Pa").get<double>(), 0.0);
+    // The stress figures' colour scale: +-1.25 times the larger fillet peak.
+    const double cap = 1.25 * std::max(peak, -s.at("fillet_compression_peak_Pa").get<double>());
+    EXPECT_NEAR(s.at("image_range_Pa").at(0).get<double>(), -cap, 1e-6 * cap) << point;
+    EXPECT_NEAR(s.at("image_range_Pa").at(1).get<double>(), cap, 1e-6 * cap) << point;
     EXPECT_TRUE(fs::exists(dir.path() / point / "fe_summary.json"));
     EXPECT_TRUE(fs::exists(dir.path() / point / "fe_fillet_curves.csv"));
   }
@@ -535,7 +540,8 @@ TEST(FeGear, ComparisonGivesSphFeAndErrorOrSaysWhatIsMissing) {
       {"fillet_stress_at_iso30_Pa", 3.4e8},
       {"reference_fillet_size_m", 1e-4},
       {"load", {{"normal_force_N", 7449.0}, {"load_radius_m", 0.0262}, {"source", "nominal"}}},
-      {"iso_6336_3", {{"sigma_F0_Pa", 3.6e8}}}};
+      {"iso_6336_3", {{"sigma_F0_Pa", 3.6e8}}},
+      {"image_range_Pa", {-5.25e8, 5.25e8}}};
   nlohmann::json sph = {{"analysis", {{"static_check", {{"tooth0_force_N", 7449.0}}}}}};
   nlohmann::json block = fe_comparison(sph, fe);
   EXPECT_EQ(block.at("status"), "sph_values_missing");
@@ -553,6 +559,8 @@ TEST(FeGear, ComparisonGivesSphFeAndErrorOrSaysWhatIsMissing) {
   EXPECT_EQ(block.at("status"), "compared");
   EXPECT_NEAR(block.at("fillet_tension_peak_Pa").at("error").get<double>(), -0.1, 1e-12);
   EXPECT_NEAR(block.at("fillet_compression_peak_Pa").at("error").get<double>(), 0.0, 1e-12);
+  // The FE figures' colour scale, for the SPH field drawn beside them.
+  EXPECT_EQ(block.at("image_range_Pa"), nlohmann::json({-5.25e8, 5.25e8}));
 }
 
 // ------------------------------------------------------------------- CLI --

@@ -118,6 +118,64 @@ TEST(Fillet, PeakOfAGivenStressIsFoundBetweenSamples) {
   EXPECT_NEAR(one.along({1.0, 0.0}), 3.0, 1e-12);
 }
 
+TEST(Fillet, ToothWindowHoldsTheToothFromTipToBelowTheRootAndNoNeighbour) {
+  const geometry::PinionGeometry g = paper_pinion();
+  const double pitch = kPi * g.spec().tool.module_m;
+  // Tooth 0 as a static check places it (turned a little, off the origin),
+  // and unplaced as the FE check draws it.
+  const ToothFillets upright = tooth_fillets(g, 0, {}, {1.0, 0.0}, 2e-5);
+  const auto [ux0, uy0, ux1, uy1] = tooth_window(upright, g.tip_radius());
+  for (const geometry::Transform place :
+       {geometry::Transform{0.11, {0.003, -0.001}}, geometry::Transform{-0.05, {}},
+        geometry::Transform{0.26, {}}, geometry::Transform{}}) {
+    const ToothFillets f = tooth_fillets(g, 0, place, {1.0, 0.0}, 2e-5);
+    const auto [x0, y0, x1, y1] = tooth_window(f, g.tip_radius());
+    auto inside = [&](Point p) { return p.x >= x0 && p.x <= x1 && p.y >= y0 && p.y <= y1; };
+    for (const FilletCurve* c : {&f.tension, &f.compression}) {
+      for (const Point& p : c->points) EXPECT_TRUE(inside(p)) << p.x << ", " << p.y;
+    }
+    // The whole outline of tooth 0 (within half a pitch of its axis, which
+    // points along -y turned by the placement), tip included; the root
+    // circle a little further in too; the neighbours' tips not.
+    const Point axis = geometry::rotate({0.0, -1.0}, place.angle);
+    const double half_pitch = 0.5 * g.angular_pitch();
+    int tooth0 = 0;
+    for (const Point& q : geometry::transformed(g.outline(), place)) {
+      const Point d = q - f.centre;
+      const double from_axis = std::acos(geometry::dot(d, axis) / geometry::norm(d));
+      if (from_axis < half_pitch) {
+        EXPECT_TRUE(inside(q)) << q.x << ", " << q.y;
+        ++tooth0;
+      }
+    }
+    EXPECT_GT(tooth0, 50);
+    EXPECT_TRUE(inside(f.centre + (0.95 * g.root_radius()) * axis));
+    for (const double side : {-1.0, 1.0}) {
+      const Point tip = geometry::rotate(axis, side * g.angular_pitch());
+      EXPECT_FALSE(inside(f.centre + g.tip_radius() * tip));
+    }
+    // About a pitch across and no more than 1.5 pitches either way; turned
+    // as a static check turns it (a few degrees), the upright tooth's size.
+    EXPECT_GT(x1 - x0, 0.8 * pitch);
+    EXPECT_LT(x1 - x0, 1.5 * pitch);
+    EXPECT_LT(y1 - y0, 1.5 * pitch);
+    if (std::abs(place.angle) < 0.15) {
+      EXPECT_NEAR(x1 - x0, ux1 - ux0, 1e-12);
+      EXPECT_NEAR(y1 - y0, uy1 - uy0, 1e-12);
+    }
+  }
+  // Unplaced, the rectangle itself: the space centres 15 % inside its
+  // sides, 4 % of the tooth height beyond the tip, a quarter below.
+  const ToothFillets f = tooth_fillets(g, 0, {}, {1.0, 0.0}, 2e-5);
+  const auto [x0, y0, x1, y1] = tooth_window(f, g.tip_radius());
+  const Point a = f.tension.points.front();
+  const double height = g.tip_radius() + a.y;
+  EXPECT_NEAR(x1, 1.15 * std::abs(a.x), 1e-12);
+  EXPECT_NEAR(x0, -x1, 1e-12);
+  EXPECT_NEAR(y0, -g.tip_radius() - 0.04 * height, 1e-12);
+  EXPECT_NEAR(y1, a.y + 0.25 * height, 1e-12);
+}
+
 TEST(Fillet, NamedPointsOfThePathOfContactLieInOrderOnTheFlank) {
   const geometry::PinionGeometry g = paper_pinion();
   const ContactPath c = rack_contact_path(g);

@@ -1,7 +1,8 @@
 // GET /jobs/{id}/images/{field}.png over real HTTP, in a build with the
 // renderer (without it the endpoint answers 501, see test_server_api.cpp):
 // every frame, including the initial state whose stress is zero everywhere,
-// the fields, the zoom window, the refusals, and the bounded cache.
+// the fields, the zoom window, the colour range, the refusals, and the
+// bounded cache.
 #ifdef GEARSPH_WITH_RENDER
 
 #include "tests/test_server_support.hpp"
@@ -92,6 +93,45 @@ TEST_F(ServerImages, ZoomShowsAWindow) {
   ASSERT_EQ(zoomed.status, 200u) << zoomed.body.substr(0, 300);
   EXPECT_EQ(png_size(zoomed.body), std::make_pair(1280u, 800u));
   EXPECT_FALSE(whole.body == zoomed.body);
+}
+
+// The largest principal stress on a colour scale that the request fixes
+// (the dashboard's SPH field beside the FE one): its own image per range.
+TEST_F(ServerImages, LargestPrincipalStressOnAGivenRange) {
+  auto c = server_->client(std::chrono::seconds(120));
+  const ClientResponse own = c.get(image("max_principal.png?frame=2"));
+  ASSERT_EQ(own.status, 200u) << own.body.substr(0, 300);
+  EXPECT_EQ(own.header("Content-Type"), "image/png");
+  EXPECT_EQ(png_size(own.body), std::make_pair(1280u, 800u));
+  const auto health = [&] { return c.get("/health").json().at("image_cache"); };
+  const int misses_before = health().at("misses").get<int>();
+  const ClientResponse narrow = c.get(image("max_principal.png?frame=2&range=-1e5,1e5"));
+  ASSERT_EQ(narrow.status, 200u) << narrow.body.substr(0, 300);
+  EXPECT_EQ(png_size(narrow.body), std::make_pair(1280u, 800u));
+  const ClientResponse wide = c.get(image("max_principal.png?frame=2&range=-1e9,1e9"));
+  ASSERT_EQ(wide.status, 200u) << wide.body.substr(0, 300);
+  // Each range rendered (a miss of the cache each), each its own picture.
+  EXPECT_EQ(health().at("misses").get<int>(), misses_before + 2);
+  EXPECT_FALSE(narrow.body == wide.body);
+  EXPECT_FALSE(narrow.body == own.body);
+  // The same range again: from the cache.
+  const int hits_before = health().at("hits").get<int>();
+  EXPECT_TRUE(c.get(image("max_principal.png?frame=2&range=-1e5,1e5")).body == narrow.body);
+  EXPECT_EQ(health().at("hits").get<int>(), hits_before + 1);
+  // A window about as tall as wide (a tooth) on the FE tooth figures' canvas.
+  const ClientResponse tall =
+      c.get(image("max_principal.png?frame=2&zoom=0,-0.01,0.01,0.0&range=-1e6,1e6"));
+  ASSERT_EQ(tall.status, 200u) << tall.body.substr(0, 300);
+  EXPECT_EQ(png_size(tall.body), std::make_pair(1100u, 1000u));
+  // A range is two finite numbers, lo < hi, for a field with a colour scale.
+  for (const char* bad : {"5,1", "a,b", "1", "1,1", "0,inf", "nan,1", "1,2,3", ""}) {
+    const ClientResponse r = c.get(image(std::string("max_principal.png?range=") + bad));
+    EXPECT_EQ(r.status, 400u) << bad;
+    EXPECT_NE(r.json().at("detail").get<std::string>().find("lo < hi"), std::string::npos)
+        << r.body;
+  }
+  const ClientResponse body = c.get(image("body.png?range=0,1"));
+  EXPECT_EQ(body.status, 400u) << body.body.substr(0, 300);
 }
 
 TEST_F(ServerImages, RefusalsNameWhatExists) {

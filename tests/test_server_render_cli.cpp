@@ -53,6 +53,10 @@ TEST_F(RenderCli, RendersOneFrameFromTheRunOrItsResultsFile) {
                     " --zoom=0,-0.01,0.05,0.01 --out " + (dir_ / "first.png").string()),
             0);
   EXPECT_TRUE(is_png(dir_ / "first.png"));
+  EXPECT_EQ(gearsph("render " + run.string() + " --field max_principal --range=-1e6,2e6 --out " +
+                    (dir_ / "sigma1.png").string()),
+            0);
+  EXPECT_TRUE(is_png(dir_ / "sigma1.png"));
 }
 
 TEST_F(RenderCli, FramesAllWritesEverySnapshot) {
@@ -81,6 +85,9 @@ TEST_F(RenderCli, RefusesWhatItCannotDraw) {
   // A usage error (2), as the HTTP route answers 400, not a failed render (1).
   EXPECT_EQ(gearsph("render " + run + " --zoom 0.05,0,0,0.01 --out " + out), 2);
   EXPECT_EQ(gearsph("render " + run + " --zoom 0,0,x,0.01 --out " + out), 2);
+  EXPECT_EQ(gearsph("render " + run + " --range 5,1 --out " + out), 2);
+  EXPECT_EQ(gearsph("render " + run + " --range a,b --out " + out), 2);
+  EXPECT_EQ(gearsph("render " + run + " --field body --range 0,1 --out " + out), 2);
   // Another file beside results.h5 is not silently replaced by it.
   EXPECT_EQ(gearsph("render " + run + "/other.h5 --out " + out), 2);
   EXPECT_FALSE(fs::exists(dir_ / "bad.png"));

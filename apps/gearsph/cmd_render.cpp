@@ -25,6 +25,25 @@ std::vector<std::string> split(const std::string& text, char sep) {
   return out;
 }
 
+// `count` finite numbers separated by commas, or invalid_argument(usage).
+std::vector<double> numbers(const std::string& text, std::size_t count, const std::string& usage) {
+  const std::vector<std::string> v = split(text, ',');
+  if (v.size() != count) throw std::invalid_argument(usage + ", got '" + text + "'");
+  std::vector<double> out(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    std::size_t used = 0;
+    try {
+      out[k] = std::stod(v[k], &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != v[k].size() || !std::isfinite(out[k])) {
+      throw std::invalid_argument(usage + ": '" + v[k] + "' is not a number");
+    }
+  }
+  return out;
+}
+
 void write_png(const std::string& path, const std::string& bytes) {
   std::ofstream f(path, std::ios::binary);
   f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
@@ -42,23 +61,16 @@ int cmd_render(Args& args) {
   request.field = args.option("field").value_or("von_mises");
   request.frame = args.integer("frame", -1);
   if (const auto zoom = args.option("zoom")) {
-    const std::vector<std::string> v = split(*zoom, ',');
     const std::string usage = "--zoom takes x0,y0,x1,y1 in metres with x1 > x0 and y1 > y0";
-    if (v.size() != 4) throw std::invalid_argument(usage + ", got '" + *zoom + "'");
-    std::array<double, 4> z{};
-    for (std::size_t k = 0; k < 4; ++k) {
-      std::size_t used = 0;
-      try {
-        z[k] = std::stod(v[k], &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || used != v[k].size() || !std::isfinite(z[k])) {
-        throw std::invalid_argument(usage + ": '" + v[k] + "' is not a number");
-      }
-    }
+    const std::vector<double> z = numbers(*zoom, 4, usage);
     if (!(z[2] > z[0] && z[3] > z[1])) throw std::invalid_argument(usage + ", got '" + *zoom + "'");
     request.zoom_m = {z[0], z[1], z[2], z[3]};
+  }
+  if (const auto range = args.option("range")) {
+    const std::string usage = "--range takes lo,hi in the field's SI unit with lo < hi";
+    const std::vector<double> r = numbers(*range, 2, usage);
+    if (!(r[0] < r[1])) throw std::invalid_argument(usage + ", got '" + *range + "'");
+    request.range = std::array<double, 2>{r[0], r[1]};
   }
   const std::vector<std::string> pos = args.positional();
   if (pos.size() != 1) throw std::invalid_argument("render: one run directory or results.h5");

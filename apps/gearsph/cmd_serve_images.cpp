@@ -23,6 +23,12 @@ using render::FieldImage;
 // Characters of a job's name shown in an image's title.
 constexpr std::size_t kMaxTitleName = 24;
 
+// A window about as tall as wide (a tooth) is drawn on the canvas of the FE
+// check's tooth figures (fe/fe_images.cpp), so the two sit side by side at
+// one size; a wider one on the usual 1280 x 800.
+constexpr double kTallWindow = 0.75;  // height / width
+constexpr int kToothWidth = 1100, kToothHeight = 1000;
+
 struct FieldChoice {
   std::string label;
   std::string unit;  // SI
@@ -34,6 +40,7 @@ const std::map<std::string, FieldChoice>& field_choices() {
   using C = FieldImage::Colouring;
   static const std::map<std::string, FieldChoice> choices = {
       {"von_mises", {"von Mises stress", "Pa", C::Sequential}},
+      {"max_principal", {"largest principal stress", "Pa", C::Diverging}},
       {"pressure", {"pressure", "Pa", C::Diverging}},
       {"stress_xx", {"stress xx", "Pa", C::Diverging}},
       {"stress_yy", {"stress yy", "Pa", C::Diverging}},
@@ -49,6 +56,17 @@ const std::map<std::string, FieldChoice>& field_choices() {
 std::string known_fields() {
   std::string out;
   for (const auto& [name, choice] : field_choices()) out += (out.empty() ? "" : ", ") + name;
+  return out;
+}
+
+// The in-plane largest principal stress, sigma_1 = (sxx + syy) / 2 +
+// sqrt(((sxx - syy) / 2)^2 + sxy^2), per particle.
+std::vector<double> max_principal(const std::vector<double>& xx, const std::vector<double>& yy,
+                                  const std::vector<double>& xy) {
+  std::vector<double> out(std::min({xx.size(), yy.size(), xy.size()}));
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    out[i] = 0.5 * (xx[i] + yy[i]) + std::hypot(0.5 * (xx[i] - yy[i]), xy[i]);
+  }
   return out;
 }
 
@@ -104,6 +122,11 @@ server::ImageResult render_frame(const std::filesystem::path& job_dir,
     out.detail = "no field \"" + request.field + "\"; known fields: " + known_fields();
     return out;
   }
+  if (request.range && choice->second.colouring == FieldImage::Colouring::Categorical) {
+    out.status = 400;
+    out.detail = "range sets a colour scale; the field \"" + request.field + "\" has none";
+    return out;
+  }
   const results::ResultsFile file(job_dir / "results.h5");
   const std::size_t frames = file.frame_count();
   if (frames == 0) {
@@ -126,6 +149,13 @@ server::ImageResult render_frame(const std::filesystem::path& job_dir,
   FieldImage f;
   f.width = 1280;
   f.height = 800;
+  if (request.zoom_m) {
+    const auto& z = *request.zoom_m;
+    if (z[3] - z[1] >= kTallWindow * (z[2] - z[0])) {
+      f.width = kToothWidth;
+      f.height = kToothHeight;
+    }
+  }
   f.supersample = 2;
   const std::size_t n = frame.position.size() / 3;
   f.x.resize(n);
@@ -148,21 +178,35 @@ server::ImageResult render_frame(const std::filesystem::path& job_dir,
     f.value = magnitudes(frame.velocity);
   } else if (field == "displacement") {
     f.value = magnitudes(frame.displacement);
+  } else if (field == "max_principal") {
+    f.value = max_principal(file.field(index, "stress_xx"), file.field(index, "stress_yy"),
+                            file.field(index, "stress_xy"));
   } else if (field != "body") {
     f.value = file.field(index, field);
   }
   f.colouring = choice->second.colouring;
   f.field_label = choice->second.label;
   double max_abs = 0;
+  bool off_scale = false;
   for (double v : f.value) {
     if (std::isfinite(v)) max_abs = std::max(max_abs, std::abs(v));
+    if (request.range && ((*request.range)[0] > v || v > (*request.range)[1])) off_scale = true;
+  }
+  if (request.range) {
+    // The bar spans the range and is labelled in its unit; values beyond
+    // take the end colours, and the label says there are some.
+    max_abs = std::max(std::abs((*request.range)[0]), std::abs((*request.range)[1]));
+    if (off_scale) f.field_label += " (off scale beyond the ends)";
   }
   if (!choice->second.unit.empty()) {
     const auto unit = render::engineering_unit(max_abs, choice->second.unit);
     f.unit_label = unit.label;
     f.unit_scale = unit.scale;
   }
-  if (f.colouring == FieldImage::Colouring::Sequential && field != "density") {
+  if (request.range) {
+    f.vmin = (*request.range)[0];
+    f.vmax = (*request.range)[1];
+  } else if (f.colouring == FieldImage::Colouring::Sequential && field != "density") {
     // Magnitudes start at zero; a field that is zero everywhere (the stress
     // of the initial state) still needs a range: one displayed unit.
     f.vmin = 0.0;

@@ -56,9 +56,9 @@ usage:
       or --teeth say otherwise; --compare takes the load from a finished SPH run and
       writes fe_comparison.json; writes DIR/fe_summary.json, fe_fillet_curves.csv/.json
       and PNG images; --keep-model-files keeps the .geo/.inp/.frd in DIR/fe_model
-  gearsph render RUN_DIR|results.h5 --out FILE.png [--field von_mises] [--frame K] [--zoom x0,y0,x1,y1]
-      a frame of a run as the service draws it (frame -1: the last); --frames all
-      --out DIR writes every frame
+  gearsph render RUN_DIR|results.h5 --out FILE.png [--field von_mises] [--frame K] [--zoom x0,y0,x1,y1] [--range lo,hi]
+      a frame of a run as the service draws it (frame -1: the last); --range fixes the
+      colour scale (SI); --frames all --out DIR writes every frame
   gearsph plot RUN_DIR --columns A,B --out FILE.png [--title T] [--ylabel L] [--scale S]
       history.csv columns against time
   gearsph serve [options]

@@ -184,6 +184,33 @@ std::vector<Point> loaded_flank(const geometry::PinionGeometry& pinion, int k,
   return geometry::norm(right.front() - foot) < geometry::norm(left.front() - foot) ? right : left;
 }
 
+std::array<double, 4> tooth_window(const ToothFillets& f, double tip_radius) {
+  const Point a = f.tension.points.front() - f.centre;
+  const Point b = f.compression.points.front() - f.centre;
+  // The tooth axis bisects the two space centres (half a pitch either side).
+  const Point sum = (1.0 / geometry::norm(a)) * a + (1.0 / geometry::norm(b)) * b;
+  const Point u = (1.0 / geometry::norm(sum)) * sum, v{-u.y, u.x};
+  const double half = 1.15 * std::max(std::abs(geometry::dot(a, v)), std::abs(geometry::dot(b, v)));
+  const double space = std::min(geometry::dot(a, u), geometry::dot(b, u));
+  const double height = tip_radius - space;
+  const double inner = space - 0.25 * height, outer = tip_radius + 0.04 * height;
+  // The rectangle's size whatever way the tooth is turned (a figure of it
+  // keeps the scale of an upright one), centred on it ...
+  const Point mid = f.centre + (0.5 * (inner + outer)) * u;
+  const double half_height = 0.5 * (outer - inner);
+  std::array<double, 4> box{mid.x - half, mid.y - half_height, mid.x + half, mid.y + half_height};
+  // ... and grown where a turned tooth's fillets or tip would leave it.
+  auto hold = [&box](Point p) {
+    box = {std::min(box[0], p.x), std::min(box[1], p.y), std::max(box[2], p.x),
+           std::max(box[3], p.y)};
+  };
+  for (const FilletCurve* c : {&f.tension, &f.compression}) {
+    for (const Point& p : c->points) hold(p);
+  }
+  hold(f.centre + tip_radius * u);
+  return box;
+}
+
 double PlaneStress::max_principal() const {
   return 0.5 * (xx + yy) + std::sqrt(0.25 * (xx - yy) * (xx - yy) + xy * xy);
 }

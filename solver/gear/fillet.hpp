@@ -13,6 +13,7 @@
 // ISO 6336-3 rates the tooth by the stress at its 30-degree point, where the
 // fillet's tangent makes 30 degrees with the tooth axis; the peak of a
 // loaded tooth sits near it (Linke 1996; ISO 6336-3:2006, 6.2).
+#include <array>
 #include <vector>
 
 #include "solver/geometry/gear_profile.hpp"
@@ -57,6 +58,16 @@ ToothFillets tooth_fillets(const geometry::PinionGeometry& pinion, int k,
 std::vector<geometry::Point> loaded_flank(const geometry::PinionGeometry& pinion, int k,
                                           const geometry::Transform& placement,
                                           geometry::Point load_direction);
+
+// A window around one tooth for a figure of its root, the same for the FE
+// check's tooth images and the SPH static check's tooth0_box_m: across, the
+// two space centres (where the fillets start) and 15 % more each side;
+// along the tooth axis, from 4 % of the tooth height beyond the tip down to
+// a quarter of it below the space centres. In the world as {x0, y0, x1, y1}
+// [m]: that rectangle for a tooth along an axis; for a turned one a box of
+// the same size centred on it (a figure keeps the upright tooth's scale),
+// grown only where the fillets or the tip would leave it.
+std::array<double, 4> tooth_window(const ToothFillets& f, double tip_radius);
 
 // In-plane Cauchy stress [Pa].
 struct PlaneStress {

@@ -257,6 +257,10 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
         {"lewis_Pa", lewis},
         {"nominal_error_vs_lewis", lewis > 0 ? (bending - lewis) / lewis : 0.0},
         {"fillet_curves", fillet_curves(L.roots->fillets(i0), root)},
+        // Where tooth 0 is (reference frame; a static check's displacements
+        // are microns): the window of the FE check's tooth figures, for its
+        // field to be drawn beside them.
+        {"tooth0_box_m", gear::tooth_window(L.roots->fillets(i0), L.tip_radius)},
         {"particles", L.fitted ? "body_fitted" : "lattice"},
         {"spacing_m", L.spacing},
         {"fine_spacing_m", L.fine_spacing}};

@@ -324,6 +324,20 @@ try {
     await page.waitForFunction(() => ["fe-field-image", "sph-fillet-image"].every((i) => document.getElementById(i)?.complete));
     const widths = await page.evaluate(() => ["fe-field-image", "sph-fillet-image"].map((i) => document.getElementById(i).naturalWidth));
     check(widths.every((w) => w > 0), `the FE and SPH field images load side by side (${widths.join(", ")} px wide)`);
+    check(widths[0] === widths[1], `both figures have one size (${widths.join(", ")} px wide)`);
+    // The SPH figure: sigma_1 of tooth 0 (the static check's tooth0_box_m) on
+    // the FE figure's colour scale (fe_comparison.image_range_Pa).
+    const sphSrc = new URL(await panel.locator("#sph-fillet-image").getAttribute("src"), server.url);
+    const staticSummary = await (await page.request.get(`${server.url}/jobs/${idF}/files/summary.json`)).json();
+    const box = staticSummary.analysis.static_check.tooth0_box_m;
+    const feRange = staticSummary.fe_comparison.image_range_Pa;
+    check(sphSrc.pathname.endsWith("/images/max_principal.png"), `the SPH figure is the largest principal stress (${sphSrc.pathname})`);
+    check(Array.isArray(box) && sphSrc.searchParams.get("zoom")?.split(",").length === 4,
+      `the SPH figure is zoomed to tooth 0 (${sphSrc.searchParams.get("zoom")}; tooth0_box_m ${JSON.stringify(box)})`);
+    check(Array.isArray(feRange) && JSON.stringify(sphSrc.searchParams.get("range")?.split(",").map(Number)) === JSON.stringify(feRange),
+      `the SPH figure has the FE figure's colour range (${sphSrc.searchParams.get("range")}; image_range_Pa ${JSON.stringify(feRange)})`);
+    check(/same window on one colour scale/.test(await panel.locator("#fillet-fields-note").textContent()),
+      "the note under the figures says they share window and scale");
     check((await panel.locator("#fe-field-image").getAttribute("src")).endsWith("fe_max_principal_tooth0.png"),
       "the FE field is the largest principal stress of tooth 0");
     check((await panel.locator("#fe-field-image").getAttribute("alt")).startsWith("FE largest principal"), "the FE image has its alt text");
@@ -341,9 +355,11 @@ try {
     await page.selectOption("#fe-field-select", "fe_von_mises_tooth0.png");
     await page.waitForFunction(() => {
       const img = document.getElementById("fe-field-image");
-      return img.src.endsWith("fe_von_mises_tooth0.png") && img.complete && img.naturalWidth > 0;
+      const sph = document.getElementById("sph-fillet-image");
+      return img.src.endsWith("fe_von_mises_tooth0.png") && img.complete && img.naturalWidth > 0 &&
+        /\/images\/von_mises\.png\?zoom=.*&range=0,/.test(sph.src) && sph.complete && sph.naturalWidth > 0;
     });
-    console.log("ok: the FE field switches to von Mises");
+    console.log("ok: both fields switch to von Mises");
   }
 
   // 10. Keyboard: the view tabs are links reached with Tab.

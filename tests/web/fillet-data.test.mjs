@@ -1,6 +1,8 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { feComparison, filletChart, filletCheck, filletTable, finestMesh, joinOnX } from "../../web/js/fillet-data.js";
+import {
+  FIELD_PAIRS, feComparison, feImageRange, filletChart, filletCheck, filletTable, finestMesh, joinOnX, sphFieldImage,
+} from "../../web/js/fillet-data.js";
 
 // A static check as summary.json gives it (values of the paper's pinion,
 // 1 kN at the pitch point), its curves cut to three samples.
@@ -110,4 +112,35 @@ test("the table: SPH against ISO 6336-3's sigma_F0 without the FE check", () => 
   const { fillet_tension_peak_error_vs_iso: _, ...older } = check;
   const e = filletTable(older).rows[0].error;
   assert.ok(Math.abs(e - (check.fillet_tension_peak_Pa / check.iso_sigma_F0_Pa - 1)) < 1e-12);
+});
+
+test("the SPH field beside the FE one: the same quantity, window and colour scale", () => {
+  const box = [-0.0057, -0.0289, 0.0057, -0.0160];
+  const withBox = { ...check, tooth0_box_m: box };
+  const range = [-55.88e6, 55.88e6];
+  // The FE summary's range, as given.
+  assert.deepEqual(feImageRange({ ...comparison, image_range_Pa: range }), range);
+  // A run that predates it: the same rule on the FE peaks (1.25 times the larger).
+  const derived = feImageRange(comparison);
+  assert.ok(Math.abs(derived[1] - 1.25 * 44710844.0) < 1e-6 && derived[0] === -derived[1]);
+  assert.equal(feImageRange({ status: "compared" }), null);
+  assert.equal(feImageRange({ ...comparison, image_range_Pa: [5, 1] })[1], derived[1]);
+
+  const [s1, vm] = FIELD_PAIRS;
+  assert.equal(s1.fe, "fe_max_principal_tooth0.png");
+  const a = sphFieldImage("j1", withBox, s1, range);
+  assert.equal(a.src, `/jobs/j1/images/max_principal.png?zoom=${box.join(",")}&range=-55880000,55880000`);
+  assert.ok(a.tooth0);
+  // The range read back is exactly the FE figure's.
+  const q = new URLSearchParams(a.src.split("?")[1]);
+  assert.deepEqual(q.get("range").split(",").map(Number), range);
+  // von Mises: from zero to the same upper end, as the FE figure.
+  assert.deepEqual(sphFieldImage("j1", withBox, vm, range).range, [0, 55.88e6]);
+  assert.match(sphFieldImage("j1", withBox, vm, range).src, /^\/jobs\/j1\/images\/von_mises\.png\?zoom=.*&range=0,55880000$/);
+  // Without tooth0_box_m: the meshing zone; without a range: none asked for.
+  const zone = [-0.01, -0.03, 0.01, -0.02];
+  const b = sphFieldImage("j1", check, s1, null, zone);
+  assert.equal(b.src, "/jobs/j1/images/max_principal.png?zoom=-0.01,-0.03,0.01,-0.02");
+  assert.equal(b.tooth0, false);
+  assert.equal(sphFieldImage("j1", check, s1, null).src, "/jobs/j1/images/max_principal.png");
 });

@@ -100,3 +100,42 @@ export function filletTable(check, comparison = null) {
     }),
   };
 }
+
+// The FE check's colour scale of its tooth-0 stress figures [Pa]:
+// fe_comparison.image_range_Pa, or for a run that predates it the same rule
+// (fe/gear_fe_model.cpp, root_image_range_Pa) on the FE fillet peaks,
+// ±1.25 times the larger. null when neither is there.
+export function feImageRange(comparison) {
+  const r = comparison?.image_range_Pa;
+  if (Array.isArray(r) && r.length === 2 && r.every(Number.isFinite) && r[0] < r[1]) return r;
+  const peaks = [comparison?.fillet_tension_peak_Pa?.fe, comparison?.fillet_compression_peak_Pa?.fe];
+  if (!peaks.every(Number.isFinite)) return null;
+  const cap = 1.25 * Math.max(...peaks.map(Math.abs));
+  return cap > 0 ? [-cap, cap] : null;
+}
+
+// The fields the panel shows side by side, SPH and FE, the same quantity on
+// the same colour scale: the FE figure's file and the SPH image's field and
+// range (FE von Mises is drawn from 0 to the σ1 figure's upper end).
+export const FIELD_PAIRS = [
+  { fe: "fe_max_principal_tooth0.png", sph: "max_principal", label: "largest principal stress σ1", symbol: "σ1",
+    range: (r) => r },
+  { fe: "fe_von_mises_tooth0.png", sph: "von_mises", label: "von Mises stress", symbol: "von Mises",
+    range: (r) => [0, r[1]] },
+];
+
+// The URL of the SPH image for a pair: the last frame zoomed to tooth 0
+// (static_check.tooth0_box_m; a run without it: the meshing zone, `zone`),
+// on the FE figure's colour scale when it is known.
+//   {src, tooth0 (zoomed to tooth 0), range (Pa or null)}
+export function sphFieldImage(id, check, pair, feRange, zone = null) {
+  const box = Array.isArray(check?.tooth0_box_m) && check.tooth0_box_m.length === 4 &&
+    check.tooth0_box_m.every(Number.isFinite) ? check.tooth0_box_m : null;
+  const window = box || zone;
+  const range = feRange ? pair.range(feRange) : null;
+  const query = [
+    window ? `zoom=${window.map((v) => Number(v.toPrecision(6))).join(",")}` : null,
+    range ? `range=${range.map(String).join(",")}` : null, // exactly the FE figure's
+  ].filter(Boolean);
+  return { src: `/jobs/${id}/images/${pair.sph}.png${query.length ? `?${query.join("&")}` : ""}`, tooth0: !!box, range };
+}

@@ -1,12 +1,14 @@
 // The result view's "Fillet stress (tooth 0)" panel, for a static gear
 // check: sigma_1 along the tension fillet and sigma_3 along the compression
 // fillet against arc length, with the FE check's curves when it ran; the
-// peaks against FE (or ISO 6336-3's sigma_F0); and the FE field of tooth 0
-// beside the SPH field of the meshing zone.
+// peaks against FE (or ISO 6336-3's sigma_F0); and the SPH and FE fields
+// of tooth 0 side by side, one quantity on one colour scale.
 import { get } from "./api.js";
 import { lineChart } from "./charts.js";
 import { eng } from "./format.js";
-import { feComparison, filletChart, filletCheck, filletTable, finestMesh } from "./fillet-data.js";
+import {
+  FIELD_PAIRS, feComparison, feImageRange, filletChart, filletCheck, filletTable, finestMesh, sphFieldImage,
+} from "./fillet-data.js";
 import { meshingZone } from "./results-data.js";
 import { h } from "./ui.js";
 
@@ -65,35 +67,48 @@ function tableNote(check, summary, comparison) {
     (fe?.status ? ` FE check: ${fe.status}${fe.message ? `, ${fe.message}` : ""}.` : "");
 }
 
-// The SPH field of the last frame around the meshing zone and the FE field
-// of tooth 0, side by side; null when the FE check wrote no field image.
-function fields(id, summary, names) {
-  const feImages = [["fe_max_principal_tooth0.png", "largest principal stress σ1"], ["fe_von_mises_tooth0.png", "von Mises stress"]]
-    .filter(([name]) => names.has(name));
-  if (!feImages.length) return null;
+// The SPH field of the last frame and the FE field of tooth 0, side by
+// side: the same quantity (σ1, or von Mises by the select) in the same
+// window on the FE figure's colour scale; null when the FE check wrote no
+// field image.
+function fields(id, summary, check, comparison, names) {
+  const pairs = FIELD_PAIRS.filter((p) => names.has(p.fe));
+  if (!pairs.length) return null;
+  const feRange = feImageRange(comparison);
   const zone = meshingZone(summary);
-  const sphSrc = `/jobs/${id}/images/von_mises.png${zone ? `?zoom=${zone.map((v) => v.toPrecision(6)).join(",")}` : ""}`;
-  const feAlt = (label) => `FE ${label} in tooth 0, computed by CalculiX under the SPH run's tooth-0 load`;
-  const feImg = h("img", { id: "fe-field-image", src: `/jobs/${id}/files/${feImages[0][0]}`, alt: feAlt(feImages[0][1]) });
-  const feLink = h("a", { href: feImg.getAttribute("src"), target: "_blank", title: "open at full size" }, feImg);
-  const choose = h("select", { id: "fe-field-select", "aria-label": "FE field" },
-    feImages.map(([name, label]) => h("option", { value: name }, label)));
-  choose.addEventListener("change", () => {
-    const [name, label] = feImages.find(([n]) => n === choose.value);
-    feImg.src = feLink.href = `/jobs/${id}/files/${name}`;
-    feImg.alt = feAlt(label);
-  });
+  const feImg = h("img", { id: "fe-field-image" });
+  const feLink = h("a", { target: "_blank", title: "open at full size" }, feImg);
+  const sphImg = h("img", { id: "sph-fillet-image" });
+  const sphLink = h("a", { target: "_blank", title: "open at full size" }, sphImg);
+  const sphCaption = h("figcaption", {});
+  const note = h("p", { class: "note", id: "fillet-fields-note" });
+  const show = (pair) => {
+    const sph = sphFieldImage(id, check, pair, feRange, zone);
+    const where = sph.tooth0 ? "tooth 0" : zone ? "meshing zone" : "whole model";
+    feImg.src = feLink.href = `/jobs/${id}/files/${pair.fe}`;
+    feImg.alt = `FE ${pair.label} in tooth 0, computed by CalculiX under the SPH run's tooth-0 load`;
+    sphImg.src = sphLink.href = sph.src;
+    sphImg.alt = `SPH ${pair.label} in ${where} at the last frame`;
+    sphCaption.textContent = `SPH, ${where}, last frame`;
+    const scale = sph.range ? `${eng(sph.range[0], "Pa").replace(/^-/, "−")} to ${eng(sph.range[1], "Pa")}` : null;
+    note.textContent = scale && sph.tooth0
+      ? `Both figures: ${pair.symbol} of tooth 0 in the same window on one colour scale, ${scale} (the FE figure's, from 1.25 times the larger FE fillet peak); the load's contact zone is off scale, in the end colour. SPH draws each particle as a disc of its spacing.`
+      : scale
+        ? `Both figures: ${pair.symbol} on one colour scale, ${scale}; this run's summary does not say where tooth 0 is (tooth0_box_m), so the SPH figure shows the ${where}.`
+        : "The colour scales differ: the FE summary does not give its figure's range.";
+  };
+  const choose = h("select", { id: "fe-field-select", "aria-label": "field of both figures" },
+    pairs.map((p) => h("option", { value: p.fe }, p.label)));
+  choose.addEventListener("change", () => show(pairs.find((p) => p.fe === choose.value)));
+  show(pairs[0]);
   return h("div", { class: "fillet-fields-wrap" },
-    h("h3", { id: "fillet-fields-head" }, "Fields: SPH and FE"),
+    h("div", { class: "fillet-fields-head" },
+      h("h3", { id: "fillet-fields-head" }, "Fields: SPH and FE"),
+      pairs.length > 1 ? h("label", {}, "field ", choose) : h("span", { class: "muted" }, pairs[0].label)),
     h("div", { class: "fillet-fields", role: "group", "aria-labelledby": "fillet-fields-head" },
-      h("figure", {},
-        h("a", { href: sphSrc, target: "_blank", title: "open at full size" },
-          h("img", { id: "sph-fillet-image", src: sphSrc, alt: `SPH von Mises stress${zone ? " in the meshing zone" : ""} at the last frame` })),
-        h("figcaption", {}, `SPH, von Mises stress at the last frame${zone ? ", meshing zone" : ""}`)),
-      h("figure", {}, feLink,
-        h("figcaption", {}, "FE (CalculiX), tooth 0: ",
-          feImages.length > 1 ? choose : feImages[0][1]))),
-    h("p", { class: "note" }, "The colour scales differ: the SPH field's spans the contact stress; the FE field's leaves the load zone off scale to show the fillets."));
+      h("figure", {}, sphLink, sphCaption),
+      h("figure", {}, feLink, h("figcaption", {}, "FE (CalculiX), tooth 0"))),
+    note);
 }
 
 // The panel, or null for a run without fillet curves. draw() is called
@@ -107,7 +122,7 @@ export function filletPanel(id, summary, files) {
   const chartEl = h("div", { class: "chart", id: "chart-fillet" });
   const load = Number.isFinite(check.load_radius_m) ? `load at r = ${eng(check.load_radius_m, "m", 4)}` : "";
   const where = CONTACT[check.contact_point] ? `, ${CONTACT[check.contact_point]}` : "";
-  const figure = comparison ? fields(id, summary, names) : null;
+  const figure = comparison ? fields(id, summary, check, comparison, names) : null;
   const section = h("section", { class: "panel", id: "fillet", "aria-labelledby": "fillet-head" },
     h("header", {},
       h("h2", { id: "fillet-head" }, "Fillet stress (tooth 0)"),

@@ -12,6 +12,7 @@ import { h, put } from "./ui.js";
 
 const FIELDS = [
   ["von_mises", "von Mises stress"],
+  ["max_principal", "largest principal σ1"],
   ["pressure", "pressure"],
   ["stress_xx", "stress σxx"],
   ["stress_yy", "stress σyy"],
