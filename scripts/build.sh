@@ -2,5 +2,6 @@
 # Configures and builds GearSPH (Release) into build/; extra arguments go to cmake.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+source scripts/compiler_cache.sh
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "${GEARSPH_CACHE_FLAGS[@]}" "$@" >/dev/null
 cmake --build build

@@ -8,7 +8,7 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 
 PACKAGES=(
   # toolchain
-  build-essential cmake ninja-build pkg-config git clang-format
+  build-essential cmake ninja-build pkg-config git clang-format ccache
   # libraries (architecture.md: Beast, nlohmann-json, Eigen, HDF5, SQLite, OSMesa)
   libboost-dev nlohmann-json3-dev libeigen3-dev libhdf5-dev hdf5-tools
   # JSON Schema validation of job files (header-only, over nlohmann-json)

@@ -536,7 +536,7 @@ void pareto_chart(const std::filesystem::path& path, const std::string& title,
 // The rows of a sweep (written as they finish), its Pareto front
 // (pareto_NAME_front.csv), the chart (pareto_NAME.png) and the front printed.
 void report_sweep(const std::filesystem::path& out, const std::string& name,
-                  const std::string& title, const std::string& error_name,
+                  [[maybe_unused]] const std::string& title, const std::string& error_name,
                   const std::vector<Setting>& set, const std::vector<double>& cost,
                   const std::vector<double>& err, std::ofstream& csv,
                   const std::vector<std::string>& csv_rows) {

@@ -52,7 +52,7 @@ std::string outcome_line(const CellResult& r) {
   return r.outcome == "warning" ? "warning" : "stable";
 }
 
-std::string measures_line(const CellResult& r) {
+[[maybe_unused]] std::string measures_line(const CellResult& r) {
   std::string s = "drift " + fmt("%+.2g%%", 100.0 * r.energy_drift);
   s += "  zz " + fmt("%.2f", r.zigzag);
   if (r.max_penetration_over_dx > 0) s += "  pen " + fmt("%.2f dx", r.max_penetration_over_dx);
@@ -211,7 +211,7 @@ std::string file_name(const Cell& c) {
 
 int cmd_study(Args& args) {
   const bool full = args.flag("full");
-  const bool no_images = args.flag("no-images");
+  [[maybe_unused]] const bool no_images = args.flag("no-images");
   const std::string out = args.option("out").value_or("stability");
   const int threads = args.integer("threads", 0);
   const auto only = args.option("only");
