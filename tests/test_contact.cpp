@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "solver/core/simulation.hpp"
 #include "solver/diagnostics/energy.hpp"
@@ -10,6 +11,7 @@
 #include "solver/job/job.hpp"
 #include "solver/physics/contact.hpp"
 #include "solver/physics/contact_hertz.hpp"
+#include "solver/physics/contact_near_field.hpp"
 #include "solver/physics/contact_seed_penalty.hpp"
 #include "solver/run/runner.hpp"
 
@@ -39,6 +41,78 @@ TEST(Contact, HertzPenaltyStiffensWithOverlap) {
   EXPECT_NEAR(b.energy, 0.4 * b.force * 4e-6, 1e-12 * b.energy);
 }
 
+// The near-field law (contact_near_field.hpp) against its derivation: the
+// approach of a Hertz line contact minus that of the same load spread
+// evenly over a stretch of length L, each computed by quadrature of the
+// half-plane's surface displacement u(t) = -K int q(s) ln|t - s| ds
+// (Johnson 1985, eq. 2.25b): at the Hertz centre, and averaged over the
+// stretch. Steel on steel, 1 kN over 20 mm on an 8 mm flank against a flat.
+TEST(Contact, NearFieldLawIsTheHertzApproachLessTheSpreadOnes) {
+  const double E = 206e9, nu = 0.3, load = 5e4, radius = 8e-3, length = 5e-4;
+  const double K = 2.0 * (1.0 - nu * nu) / (std::numbers::pi * E);
+  const double e_star = 1.0 / (2.0 * (1.0 - nu * nu) / E);
+  const double a = std::sqrt(4.0 * load * radius / (std::numbers::pi * e_star));
+  const int n = 4000;
+  // Hertz: p(s) = 2 F / (pi a^2) sqrt(a^2 - s^2); centre displacement.
+  double hertz = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const double th = std::numbers::pi * (k + 0.5) / n;  // s = a cos(th)
+    const double s = a * std::cos(th);
+    const double p = 2.0 * load / (std::numbers::pi * a * a) * a * std::sin(th);
+    hertz += -K * p * std::log(std::abs(s)) * a * std::sin(th) * std::numbers::pi / n;
+  }
+  // Even spread over the stretch, averaged over it (midpoints, which never meet).
+  double spread = 0.0;
+  const int m = 1000;
+  for (int k = 0; k < m; ++k) {
+    for (int l = 0; l < m; ++l) {
+      if (k == l) continue;
+      spread += -K * load * std::log(std::abs(k - l) * length / m) / (double(m) * m);
+    }
+  }
+  // The diagonal cells: the mean of ln|s - t| over a square of side L/m is ln(L/m) - 3/2.
+  spread += -K * load * (std::log(length / m) - 1.5) / m;
+  const double expected = 2.0 * (hertz - spread);  // both bodies, same material
+  const double lambda = std::log(length) - 1.5;
+  const physics::NearField nf =
+      physics::near_field(e_star, K, K, lambda, lambda, 1.0 / radius, 1e30);
+  const physics::PairLaw law = physics::near_field_law(nf, expected);
+  EXPECT_NEAR(law.force, load, 2e-3 * load);
+  EXPECT_GT(expected, 0.0);
+}
+
+// The law's own consistency: overlap(F) inverted, stiffness its slope,
+// energy its integral, monotone, never pulling; a flat pair is the spring.
+TEST(Contact, NearFieldLawIsMonotoneWithConsistentStiffnessAndEnergy) {
+  const double e_star = 1.13e11, K = 2.0 / (std::numbers::pi * e_star);
+  const physics::NearField nf =
+      physics::near_field(e_star, 0.5 * K, 0.5 * K, -7.9, -7.7, 122.0, 3e11);
+  double previous = 0.0;
+  for (double d = 1e-9; d < 3e-5; d *= 1.7) {
+    const physics::PairLaw law = physics::near_field_law(nf, d);
+    ASSERT_GT(law.force, previous);
+    previous = law.force;
+    const double h = 1e-4 * d;
+    const double slope =
+        (physics::near_field_law(nf, d + h).force - physics::near_field_law(nf, d - h).force) /
+        (2.0 * h);
+    EXPECT_NEAR(law.stiffness, slope, 1e-4 * slope) << d;
+    EXPECT_LE(law.stiffness, 3e11 * (1.0 + 1e-12));
+    // Energy: trapezoidal integral of the force.
+    double energy = 0.0;
+    const int steps = 4000;
+    for (int k = 0; k < steps; ++k) {
+      const double f0 = physics::near_field_law(nf, d * k / steps).force;
+      const double f1 = physics::near_field_law(nf, d * (k + 1) / steps).force;
+      energy += 0.5 * (f0 + f1) * d / steps;
+    }
+    EXPECT_NEAR(law.energy, energy, 1e-4 * energy) << d;
+  }
+  EXPECT_EQ(physics::near_field_law(nf, -1e-6).force, 0.0);
+  const physics::NearField flat = physics::near_field(e_star, K, K, -7.9, -7.7, 0.0, 3e11);
+  EXPECT_DOUBLE_EQ(physics::near_field_law(flat, 1e-6).force, 3e11 * 1e-6);
+}
+
 json bars(const std::string& model, const std::string& formulation) {
   return {{"scene", {{"type", "bar_impact"}, {"length_m", 0.02}, {"thickness_m", 0.004}}},
           {"discretization", {{"spacing_m", 0.0005}}},
@@ -46,7 +120,9 @@ json bars(const std::string& model, const std::string& formulation) {
 }
 
 TEST(Contact, MomentumIsConservedToRoundOffThroughAnImpact) {
-  for (const char* model : {"seed_penalty", "hertz"}) {
+  // surface_penalty spreads each force over the surface around it
+  // (contact_smoothing.hpp): the shares add up to the force.
+  for (const char* model : {"seed_penalty", "hertz", "surface_penalty"}) {
     PreparedJob job = prepare_job(bars(model, "total_lagrangian"), 2);
     Simulation& sim = job.scene.sim;
     integrate::initialise(sim);
@@ -82,6 +158,95 @@ TEST(Contact, PenaltyNeverPullsSoBarsSeparate) {
     // always points left (or is zero).
     const auto f = r.history.column("contact_force_bar_left_N_per_m");
     for (double v : f) EXPECT_GE(v, 0.0);
+  }
+}
+
+// Each surface particle's curvature (scene/surfaces.cpp), the near field's
+// 1/R*: the Hertz cylinder's arc reads 1/R, the block's flat top 0.
+TEST(Contact, SurfaceCurvatureIsTheOutlines) {
+  const json job = {{"scene",
+                     {{"type", "hertz"},
+                      {"cap_height_over_a", 4},
+                      {"block_depth_over_a", 4},
+                      {"block_half_width_over_a", 4}}}};
+  PreparedJob prepared = prepare_job(job, 1);
+  const Particles& p = prepared.scene.sim.particles;
+  const double R = prepared.job.at("scene").at("radius_m").get<double>();
+  const double dx = prepared.scene.sim.discretization.dx;
+  std::size_t arc = 0, flat = 0;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    if (!std::isfinite(p.surf_depth[i])) continue;
+    if (p.body[i] == 0 && p.y0[i] < 2.0 * dx) {  // the arc near the contact
+      EXPECT_NEAR(p.surf_curvature[i], 1.0 / R, 0.01 / R) << i;
+      ++arc;
+    }
+    if (p.body[i] == 1 && p.y0[i] > -dx && std::abs(p.x0[i]) < 2.0 * dx) {
+      EXPECT_NEAR(p.surf_curvature[i], 0.0, 1e-9 / R) << i;
+      ++flat;
+    }
+  }
+  EXPECT_GT(arc, 2u);
+  EXPECT_GT(flat, 2u);
+}
+
+// The smoothing tables (contact_smoothing.hpp): each source's weights are a
+// partition of unity over its own body's surface, the receivers' table is
+// their transpose, and a smoothed point follows its particle through a
+// rigid rotation and translation of the bodies.
+TEST(Contact, SurfaceSmoothingIsAPartitionOfUnityThatFollowsRigidMotion) {
+  PreparedJob job = prepare_job(bars("surface_penalty", "total_lagrangian"), 1);
+  Simulation& sim = job.scene.sim;
+  ASSERT_TRUE(physics::contact_smoothing(sim));
+  physics::prepare_contact(sim);
+  const ContactState& st = sim.contact_state;
+  const Particles& p = sim.particles;
+  ASSERT_TRUE(st.smoothing_built);
+  std::size_t sources = 0;
+  double spread_total = 0.0, weight_total = 0.0;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    if (st.smooth_rows[i] == st.smooth_rows[i + 1]) {
+      EXPECT_FALSE(std::isfinite(p.surf_depth[i])) << "surface particle " << i << " unsmoothed";
+      continue;
+    }
+    ++sources;
+    double sum = 0.0;
+    std::size_t partners = 0;
+    for (std::uint32_t e = st.smooth_rows[i]; e < st.smooth_rows[i + 1]; ++e) {
+      const std::uint32_t k = st.smooth_k[e];
+      EXPECT_EQ(p.body[k], p.body[i]);
+      EXPECT_TRUE(std::isfinite(p.surf_depth[k]));
+      sum += st.smooth_w[e];
+      partners += k != i ? 1 : 0;
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-14) << i;
+    EXPECT_GE(partners, 2u) << i;  // a surface, not a single particle
+    weight_total += sum;
+  }
+  ASSERT_GT(sources, 10u);
+  for (double w : st.spread_w) spread_total += w;
+  EXPECT_NEAR(spread_total, weight_total, 1e-12 * weight_total);
+  ASSERT_EQ(st.spread_rows.back(), st.smooth_rows.back());
+
+  // Turn the bodies by 0.7 rad about a point and move them; normals turn too.
+  Particles moved = p;
+  const double c = std::cos(0.7), s = std::sin(0.7);
+  std::vector<double> nx(p.n), ny(p.n);
+  for (std::size_t i = 0; i < p.n; ++i) {
+    const double x = p.x0[i] - 0.003, y = p.y0[i] + 0.001;
+    moved.x[i] = c * x - s * y + 0.02;
+    moved.y[i] = s * x + c * y - 0.01;
+    moved.vx[i] = 1.5;
+    moved.vy[i] = -0.5;
+    nx[i] = c * p.surf_nx[i] - s * p.surf_ny[i];
+    ny[i] = s * p.surf_nx[i] + c * p.surf_ny[i];
+  }
+  for (std::size_t i = 0; i < p.n; ++i) {
+    if (st.smooth_rows[i] == st.smooth_rows[i + 1]) continue;
+    const physics::SmoothedPoint q = physics::smoothed_point(moved, st, i, nx[i], ny[i]);
+    EXPECT_NEAR(q.x, moved.x[i], 1e-15) << i;
+    EXPECT_NEAR(q.y, moved.y[i], 1e-15) << i;
+    EXPECT_NEAR(q.vx, 1.5, 1e-13);
+    EXPECT_NEAR(q.vy, -0.5, 1e-13);
   }
 }
 

@@ -9,6 +9,7 @@
 
 #include "solver/gear/fillet.hpp"
 #include "solver/gear/gear_rating.hpp"
+#include "solver/physics/contact_near_field.hpp"
 
 namespace gearsph::gear {
 namespace {
@@ -193,3 +194,27 @@ TEST(Fillet, NamedPointsOfThePathOfContactLieInOrderOnTheFlank) {
 
 }  // namespace
 }  // namespace gearsph::gear
+
+namespace gearsph {
+namespace {
+
+// ISO 6336-2's nominal contact stress against its textbook factors: steel
+// on steel Z_E = 189.8 sqrt(N/mm^2), 20 degrees Z_H = 2.495 (ISO 6336-2
+// figure for x = 0, beta = 0), and the Hertz line contact it stands for at
+// the pitch point (rack flank flat, pinion flank radius r sin(alpha)).
+TEST(ContactStress, IsoSigmaH0IsTheHertzPressureAtThePitchPoint) {
+  const double E = 206e9, nu = 0.3, e_star = 1.0 / (2.0 * (1.0 - nu * nu) / E);
+  const double alpha = 20.0 * std::numbers::pi / 180.0, d = 0.048, b = 0.02, ft = 1000.0;
+  const double z_e = std::sqrt(e_star / std::numbers::pi);
+  EXPECT_NEAR(z_e / std::sqrt(1e6), 189.8, 0.1);
+  const double z_h = std::sqrt(2.0 / (std::cos(alpha) * std::sin(alpha)));
+  EXPECT_NEAR(z_h, 2.495, 0.001);
+  const double sigma = gear::iso_sigma_H0(ft, d, b, alpha, e_star);
+  EXPECT_NEAR(sigma, z_h * z_e * std::sqrt(ft / (d * b)), 1e-9 * sigma);
+  const double load = ft / std::cos(alpha) / b;  // normal force per metre
+  const double curvature = 1.0 / (0.5 * d * std::sin(alpha));
+  EXPECT_NEAR(physics::hertz_peak_pressure(load, e_star, curvature), sigma, 1e-9 * sigma);
+}
+
+}  // namespace
+}  // namespace gearsph

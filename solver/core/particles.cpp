@@ -11,14 +11,16 @@ void Particles::resize(std::size_t count) {
   motion.resize(count, 0);
   correction_order.resize(count, 0);
   surf_depth.resize(count, std::numeric_limits<double>::infinity());
-  for (auto* v :
-       {&spacing, &x0,   &y0,     &mass,   &rho0,    &cs,      &x,          &y,          &vx,
-        &vy,      &rho,  &p,      &sxx,    &syy,     &sxy,     &szz,        &ax,         &ay,
-        &drho,    &lxx,  &lxy,    &lyx,    &lyy,     &bxx,     &bxy,        &byx,        &byy,
-        &fxx,     &fxy,  &fyx,    &fyy,    &rxx,     &ryy,     &rxy,        &qxx,        &qxy,
-        &qyx,     &qyy,  &ext_ax, &ext_ay, &load_ax, &load_ay, &contact_ax, &contact_ay, &surf_nx,
-        &surf_ny, &rot,  &bqx0,   &bqx1,   &bqx2,    &bqy0,    &bqy1,       &bqy2,       &qqx0,
-        &qqx1,    &qqx2, &qqy0,   &qqy1,   &qqy2}) {
+  for (auto* v : {&spacing,    &x0,         &y0,      &mass,    &rho0,    &cs,
+                  &x,          &y,          &vx,      &vy,      &rho,     &p,
+                  &sxx,        &syy,        &sxy,     &szz,     &ax,      &ay,
+                  &drho,       &lxx,        &lxy,     &lyx,     &lyy,     &bxx,
+                  &bxy,        &byx,        &byy,     &fxx,     &fxy,     &fyx,
+                  &fyy,        &rxx,        &ryy,     &rxy,     &qxx,     &qxy,
+                  &qyx,        &qyy,        &ext_ax,  &ext_ay,  &load_ax, &load_ay,
+                  &contact_ax, &contact_ay, &surf_nx, &surf_ny, &rot,     &bqx0,
+                  &bqx1,       &bqx2,       &bqy0,    &bqy1,    &bqy2,    &qqx0,
+                  &qqx1,       &qqx2,       &qqy0,    &qqy1,    &qqy2,    &surf_curvature}) {
     v->resize(count, 0.0);
   }
 }

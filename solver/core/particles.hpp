@@ -60,6 +60,10 @@ struct Particles {
   // material around the particle (CCW), which turns the normal (updated
   // Lagrangian; the total-Lagrangian stress pass turns it by F's rotation).
   Column<double> surf_nx, surf_ny, surf_depth, rot;
+  // Curvature of the outline at the particle [1/m], positive where the body
+  // is convex, averaged over the particle's spacing along the outline; 0 for
+  // surfaces found without an outline (contact_near_field.hpp).
+  Column<double> surf_curvature;
 
   void resize(std::size_t count);
   // Frees the arrays only the updated-Lagrangian step uses (density rate,

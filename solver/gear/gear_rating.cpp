@@ -147,4 +147,10 @@ double iso_single_pair_stiffness(const geometry::PinionGeometry& g, double E_pin
   return c_th * kCM * kCR * c_b * (e_pair / kESteel) * 1e9;
 }
 
+double iso_sigma_H0(double ft_N, double d1_m, double b_m, double alpha_rad, double e_star_Pa) {
+  const double z_h2 = 2.0 / (std::cos(alpha_rad) * std::sin(alpha_rad));
+  const double z_e2 = e_star_Pa / kPi;
+  return std::sqrt(z_h2 * z_e2 * ft_N / (d1_m * b_m));
+}
+
 }  // namespace gearsph::gear

@@ -69,4 +69,10 @@ ThirtyDegreePoints thirty_degree_points(const geometry::PinionGeometry& pinion);
 double iso_single_pair_stiffness(const geometry::PinionGeometry& pinion, double E_pinion_Pa,
                                  double E_rack_Pa);
 
+// ISO 6336-2 nominal contact stress of a spur pair with a rack (u -> inf):
+// sigma_H0 = Z_H Z_E sqrt(F_t / (d1 b)), Z_H = sqrt(2 / (cos a sin a)),
+// Z_E = sqrt(E* / pi), Z_eps = Z_beta = 1 (one pair carrying F_t). Equal
+// to the Hertz peak pressure at the pitch point.
+double iso_sigma_H0(double ft_N, double d1_m, double b_m, double alpha_rad, double e_star_Pa);
+
 }  // namespace gearsph::gear

@@ -149,6 +149,8 @@ RegionStep total_lagrangian_step(Simulation& sim, double dt) {
   // stress by the deformation cut (ReferencePairs).
   const RowChunks& chunks = tl.momentum;
   const bool contact = penalty_contact(sim);
+  // Smoothed contact forces are gathered from the surface around each particle.
+  const bool spread = contact && physics::contact_smoothing(sim);
   const double damping = sim.damping_1_s;
   place_rotations(sim, dt);
   double ramp = 0.0, viscous = 0.0, damped = 0.0;
@@ -198,7 +200,8 @@ RegionStep total_lagrangian_step(Simulation& sim, double dt) {
       for_my_chunks(chunks, [&](int c) {
         viscous += physics::accelerations(sim, tl, c);
         damped += external_accelerations(sim.particles, chunks.begin(c), chunks.end(c), ramp,
-                                         damping, dt, contact);
+                                         damping, dt, contact && !spread);
+        if (spread) physics::add_contact_accelerations(sim, chunks.begin(c), chunks.end(c));
         power += closing_kick_particles(sim, 0.5 * dt, chunks.begin(c), chunks.end(c));
       });
     }

@@ -84,6 +84,12 @@ ContactConfig read_contact(const nlohmann::json& c) {
   out.D = c.at("D").get<double>();
   out.damping_ratio = c.at("damping_ratio").get<double>();
   out.r0_over_dx = c.at("r0_over_dx").get<double>();
+  out.near_field = c.at("hertz_near_field").get<bool>();
+  if (c.contains("smoothing_spacings")) {
+    out.smoothing_spacings = c.at("smoothing_spacings").get<double>();
+  } else {
+    out.smoothing_spacings = -1.0;  // the scene's (prepare_job)
+  }
   return out;
 }
 
@@ -217,6 +223,9 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads, int max_threads)
   }
   if (sim.bodies.size() > 1) scenes::assign_surfaces(out.scene);
   sim.contact = read_contact(job.at("method").at("contact"));
+  if (sim.contact.smoothing_spacings < 0.0) {
+    sim.contact.smoothing_spacings = out.scene.contact_smoothing_spacings;
+  }
   if (sim.contact.model == ContactModel::Kernel &&
       sim.method.formulation == Formulation::TotalLagrangian) {
     refuse("/method/contact/model",

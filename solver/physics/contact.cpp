@@ -2,10 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+
+#include <omp.h>
 
 #include "solver/core/simulation.hpp"
 #include "solver/physics/contact_hertz.hpp"
+#include "solver/physics/contact_near_field.hpp"
 #include "solver/physics/contact_seed_penalty.hpp"
+#include "solver/physics/contact_smoothing.hpp"
 #include "solver/physics/contact_surface.hpp"
 
 namespace gearsph {
@@ -37,6 +42,11 @@ namespace {
 // Plane-strain contact modulus of two materials (Johnson 1985, eq. 4.23 form).
 double contact_modulus(const Material& a, const Material& b) {
   return 1.0 / ((1.0 - a.nu * a.nu) / a.E + (1.0 - b.nu * b.nu) / b.E);
+}
+
+// K = 2 (1 - nu^2) / (pi E) of a half-plane (contact_near_field.hpp).
+double plane_strain_compliance(const Material& m) {
+  return 2.0 * (1.0 - m.nu * m.nu) / (3.141592653589793 * m.E);
 }
 
 // Outline particles face each other when their normals are within 45
@@ -76,11 +86,16 @@ double contact_time_step_limit(const Simulation& sim) {
       const double vol = 2.0 * va * vb / (va + vb);
       // Stiffness at the deepest overlap we tolerate (r0/2) for Hertz; the
       // linear law has one stiffness.
+      const bool near = c.model == ContactModel::Surface && c.near_field;
       const double k = c.model == ContactModel::Hertz
                            ? hertz_penalty(e_star, dx, 0.5 * r0).stiffness
-                           : seed_penalty(c.D, e_star, vol, r0, 0.0).stiffness;
+                       : near ? kStiffSpring * e_star * vol / (dx * dx)
+                              : seed_penalty(c.D, e_star, vol, r0, 0.0).stiffness;
       const double inv_m = 1.0 / (ma.rho0 * va) + 1.0 / (mb.rho0 * vb);
-      omega2 = std::max(omega2, kPartnersAtOnce * k * inv_m);
+      // The surface law's lateral hat weights add up to one over a row of
+      // partners: one partner's stiffness at most (the near-field law's
+      // tangent stiffness never exceeds its series spring's).
+      omega2 = std::max(omega2, (near ? 1.0 : kPartnersAtOnce) * k * inv_m);
     }
   }
   return omega2 > 0.0 ? 2.0 / std::sqrt(omega2) : 0.0;
@@ -109,21 +124,185 @@ const std::uint8_t* contact_eligible(Simulation& sim) {
   return eligible.data();
 }
 
+bool contact_smoothing(const Simulation& sim) {
+  return sim.contact.model == ContactModel::Surface && sim.contact.smoothing_spacings > 0.0 &&
+         sim.bodies.size() > 1;
+}
+
+namespace {
+
+// The smoothing tables of contact_smoothing.hpp from the reference
+// configuration, once per run: a sweep over the surface particles sorted by x.
+void build_smoothing(Simulation& sim) {
+  const Particles& p = sim.particles;
+  ContactState& st = sim.contact_state;
+  const double reach = sim.contact.smoothing_spacings;
+  std::vector<std::uint32_t> surface;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    if (std::isfinite(p.surf_depth[i])) surface.push_back(static_cast<std::uint32_t>(i));
+  }
+  std::sort(surface.begin(), surface.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return p.x0[a] < p.x0[b]; });
+  double widest = 0.0;
+  for (std::uint32_t i : surface) widest = std::max(widest, reach * p.spacing[i]);
+  std::vector<std::vector<std::pair<std::uint32_t, double>>> rows(p.n);
+  for (std::size_t a = 0; a < surface.size(); ++a) {
+    const std::uint32_t i = surface[a];
+    const double radius = reach * p.spacing[i];
+    auto& row = rows[i];
+    // Neighbours within `widest` in x on either side, then by distance.
+    std::size_t lo = a;
+    while (lo > 0 && p.x0[i] - p.x0[surface[lo - 1]] < widest) --lo;
+    for (std::size_t b = lo; b < surface.size() && p.x0[surface[b]] - p.x0[i] < widest; ++b) {
+      const std::uint32_t k = surface[b];
+      if (p.body[k] != p.body[i]) continue;
+      if (p.surf_nx[i] * p.surf_nx[k] + p.surf_ny[i] * p.surf_ny[k] < kSmoothingNormalCosine) {
+        continue;
+      }
+      const double w = smoothing_weight(std::hypot(p.x0[k] - p.x0[i], p.y0[k] - p.y0[i]) / radius);
+      if (w > 0.0) row.emplace_back(k, w);
+    }
+  }
+  st.smooth_rows.assign(p.n + 1, 0);
+  st.smooth_k.clear();
+  st.smooth_w.clear();
+  st.smooth_offset_x.assign(p.n, 0.0);
+  st.smooth_offset_y.assign(p.n, 0.0);
+  std::vector<std::uint32_t> incoming(p.n, 0);
+  for (std::size_t i = 0; i < p.n; ++i) {
+    double total = 0.0;
+    for (const auto& [k, w] : rows[i]) total += w;
+    double mx = 0.0, my = 0.0;
+    for (const auto& [k, w] : rows[i]) {
+      st.smooth_k.push_back(k);
+      st.smooth_w.push_back(w / total);
+      mx += w / total * p.x0[k];
+      my += w / total * p.y0[k];
+      ++incoming[k];
+    }
+    if (!rows[i].empty()) {
+      st.smooth_offset_x[i] = p.x0[i] - mx;
+      st.smooth_offset_y[i] = p.y0[i] - my;
+    }
+    st.smooth_rows[i + 1] = static_cast<std::uint32_t>(st.smooth_k.size());
+  }
+  // The transposed table: per receiver k, its sources i and W_ki.
+  st.spread_rows.assign(p.n + 1, 0);
+  for (std::size_t k = 0; k < p.n; ++k) st.spread_rows[k + 1] = st.spread_rows[k] + incoming[k];
+  st.spread_i.assign(st.smooth_k.size(), 0);
+  st.spread_w.assign(st.smooth_k.size(), 0.0);
+  std::vector<std::uint32_t> fill(st.spread_rows.begin(), st.spread_rows.end() - 1);
+  for (std::size_t i = 0; i < p.n; ++i) {
+    for (std::uint32_t e = st.smooth_rows[i]; e < st.smooth_rows[i + 1]; ++e) {
+      const std::uint32_t slot = fill[st.smooth_k[e]]++;
+      st.spread_i[slot] = static_cast<std::uint32_t>(i);
+      st.spread_w[slot] = st.smooth_w[e];
+    }
+  }
+  st.smoothing_built = true;
+}
+
+// Lambda of every surface particle (contact_near_field.hpp): from its
+// smoothing weights, or its own stretch of surface without smoothing.
+void build_log_moments(Simulation& sim) {
+  const Particles& p = sim.particles;
+  ContactState& st = sim.contact_state;
+  st.log_moment.assign(p.n, 0.0);
+  const bool smooth = st.smoothing_built;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    if (!std::isfinite(p.surf_depth[i])) continue;
+    if (!smooth || st.smooth_rows[i] == st.smooth_rows[i + 1]) {
+      st.log_moment[i] = std::log(p.spacing[i]) - 1.5;
+      continue;
+    }
+    double lambda = 0.0;
+    for (std::uint32_t e = st.smooth_rows[i]; e < st.smooth_rows[i + 1]; ++e) {
+      const std::uint32_t k = st.smooth_k[e];
+      const double wk = st.smooth_w[e];
+      for (std::uint32_t f = st.smooth_rows[i]; f < st.smooth_rows[i + 1]; ++f) {
+        const std::uint32_t l = st.smooth_k[f];
+        const double r = std::hypot(p.x0[k] - p.x0[l], p.y0[k] - p.y0[l]);
+        lambda +=
+            k == l ? wk * wk * (std::log(p.spacing[k]) - 1.5) : wk * st.smooth_w[f] * std::log(r);
+      }
+    }
+    st.log_moment[i] = lambda;
+  }
+}
+
+}  // namespace
+
+SmoothedPoint smoothed_point(const Particles& p, const ContactState& st, std::size_t i, double nx,
+                             double ny) {
+  SmoothedPoint s{0.0, 0.0, 0.0, 0.0};
+  for (std::uint32_t e = st.smooth_rows[i]; e < st.smooth_rows[i + 1]; ++e) {
+    const std::uint32_t k = st.smooth_k[e];
+    const double w = st.smooth_w[e];
+    s.x += w * p.x[k];
+    s.y += w * p.y[k];
+    s.vx += w * p.vx[k];
+    s.vy += w * p.vy[k];
+  }
+  // Rotation from the reference normal to the turned one.
+  const double c = p.surf_nx[i] * nx + p.surf_ny[i] * ny;
+  const double sn = p.surf_nx[i] * ny - p.surf_ny[i] * nx;
+  s.ox = c * st.smooth_offset_x[i] - sn * st.smooth_offset_y[i];
+  s.oy = sn * st.smooth_offset_x[i] + c * st.smooth_offset_y[i];
+  s.x += s.ox;
+  s.y += s.oy;
+  return s;
+}
+
+void add_contact_accelerations(Simulation& sim, std::size_t lo, std::size_t hi) {
+  Particles& p = sim.particles;
+  if (!contact_smoothing(sim)) {
+    for (std::size_t i = lo; i < hi; ++i) {
+      p.ext_ax[i] += p.contact_ax[i];
+      p.ext_ay[i] += p.contact_ay[i];
+    }
+    return;
+  }
+  const ContactState& st = sim.contact_state;
+  for (std::size_t k = lo; k < hi; ++k) {
+    double fx = 0.0, fy = 0.0;
+    for (std::uint32_t e = st.spread_rows[k]; e < st.spread_rows[k + 1]; ++e) {
+      const std::uint32_t i = st.spread_i[e];
+      const double w = st.spread_w[e];
+      // The share of the force, and of the couple: w M / J z x (x_k - c_i).
+      const double m = w * st.couple[i];
+      fx += w * p.mass[i] * p.contact_ax[i] - m * (p.y[k] - st.centroid_y[i]);
+      fy += w * p.mass[i] * p.contact_ay[i] + m * (p.x[k] - st.centroid_x[i]);
+    }
+    p.ext_ax[k] += fx / p.mass[k];
+    p.ext_ay[k] += fy / p.mass[k];
+  }
+}
+
 void prepare_contact(Simulation& sim) {
   Particles& p = sim.particles;
   ContactState& state = sim.contact_state;
   const NeighbourList& nl = sim.contacts;
+  if (sim.contact.model == ContactModel::Surface && state.log_moment.size() != p.n) {
+    if (contact_smoothing(sim)) build_smoothing(sim);  // once per run
+    build_log_moments(sim);
+  }
   if (state.prepared_build == nl.builds()) return;
   if (sim.contact.model == ContactModel::Surface) {
     state.normal_x.resize(p.n);  // allocates once
     state.normal_y.resize(p.n);
   }
+
   state.candidates.clear();  // keeps its capacity
   for (std::size_t i = 0; i < p.n; ++i) {
     if (nl.rows[i] != nl.rows[i + 1]) state.candidates.push_back(static_cast<std::uint32_t>(i));
   }
   std::fill(p.contact_ax.begin(), p.contact_ax.end(), 0.0);
   std::fill(p.contact_ay.begin(), p.contact_ay.end(), 0.0);
+  if (contact_smoothing(sim)) {
+    state.couple.assign(p.n, 0.0);  // allocates at the first build only
+    state.centroid_x.assign(p.n, 0.0);
+    state.centroid_y.assign(p.n, 0.0);
+  }
   state.prepared_build = nl.builds();
 }
 
@@ -132,6 +311,8 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
   const NeighbourList& nl = sim.contacts;
   const ContactConfig& c = sim.contact;
   const bool surface = c.model == ContactModel::Surface;
+  const bool smooth = contact_smoothing(sim);
+  const ContactState& st = sim.contact_state;
   const double* spacing = p.spacing.data();
   const double* normal_x = sim.contact_state.normal_x.data();
   const double* normal_y = sim.contact_state.normal_y.data();
@@ -142,10 +323,15 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
     const std::size_t i = candidates[a];
     const Material& mi = sim.material_of(i);
     const double vi = p.mass[i] / p.rho[i];
+    // Where i touches (contact_smoothing.hpp): its smoothed point, or itself.
+    SmoothedPoint si{p.x[i], p.y[i], p.vx[i], p.vy[i]};
+    if (smooth) si = smoothed_point(p, st, i, normal_x[i], normal_y[i]);
     double fx = 0.0, fy = 0.0;
     for (std::uint32_t k = nl.rows[i]; k < nl.rows[i + 1]; ++k) {
       const std::uint32_t j = nl.j[k];
-      const double dxij = p.x[i] - p.x[j], dyij = p.y[i] - p.y[j];
+      SmoothedPoint sj{p.x[j], p.y[j], p.vx[j], p.vy[j]};
+      if (smooth) sj = smoothed_point(p, st, j, normal_x[j], normal_y[j]);
+      const double dxij = si.x - sj.x, dyij = si.y - sj.y;
       // The pair's spacing: the coarser of the two, so that the hat weight
       // of a fine particle spans its coarse partners' row (graded particles;
       // a lattice's dx otherwise). Symmetric in i and j.
@@ -184,15 +370,24 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
       const double e_star = contact_modulus(mi, mj);
       const double vj = p.mass[j] / p.rho[j];
       const double vol = 2.0 * vi * vj / (vi + vj);
-      PairLaw law = c.model == ContactModel::Hertz
-                        ? hertz_penalty(e_star, dx, overlap)
-                        : seed_penalty(c.D, e_star, vol, surface ? dx : r0, overlap);
+      PairLaw law;
+      if (c.model == ContactModel::Hertz) {
+        law = hertz_penalty(e_star, dx, overlap);
+      } else if (surface && c.near_field) {
+        const NearField nf = near_field(e_star, plane_strain_compliance(mi),
+                                        plane_strain_compliance(mj), st.log_moment[i],
+                                        st.log_moment[j], p.surf_curvature[i] + p.surf_curvature[j],
+                                        kStiffSpring * e_star * vol / (dx * dx));
+        law = near_field_law(nf, overlap);
+      } else {
+        law = seed_penalty(c.D, e_star, vol, surface ? dx : r0, overlap);
+      }
       law.force *= weight;
       law.stiffness *= weight;
       law.energy *= weight;
       // Dashpot on the normal approach speed, as a fraction of critical
       // damping of the pair oscillator; the total never pulls (no adhesion).
-      const double vn = (p.vx[i] - p.vx[j]) * nx + (p.vy[i] - p.vy[j]) * ny;  // > 0 separating
+      const double vn = (si.vx - sj.vx) * nx + (si.vy - sj.vy) * ny;  // > 0 separating
       const double m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
       const double damper = 2.0 * c.damping_ratio * std::sqrt(law.stiffness * m_eff);
       const double f = std::max(0.0, law.force - damper * vn);
@@ -208,6 +403,24 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
     }
     p.contact_ax[i] = fx / p.mass[i];
     p.contact_ay[i] = fy / p.mass[i];
+    if (smooth) {
+      // The force acts at the smoothed point, the turned offset (ox, oy)
+      // away from the receivers' weighted centroid; spread as a force at
+      // the centroid alone it would miss the moment (ox, oy) x f, whose
+      // work the penalty energy sees as the body turns: with it the
+      // contact stays conservative under rotation (contact_smoothing.hpp).
+      const double cx = si.x - si.ox, cy = si.y - si.oy;
+      double polar = 0.0;
+      for (std::uint32_t e = st.smooth_rows[i]; e < st.smooth_rows[i + 1]; ++e) {
+        const std::uint32_t k = st.smooth_k[e];
+        polar += st.smooth_w[e] * ((p.x[k] - cx) * (p.x[k] - cx) + (p.y[k] - cy) * (p.y[k] - cy));
+      }
+      const double moment = si.ox * fy - si.oy * fx;
+      ContactState& out = sim.contact_state;
+      out.couple[i] = polar > 0.0 ? moment / polar : 0.0;
+      out.centroid_x[i] = cx;
+      out.centroid_y[i] = cy;
+    }
     const int b = p.body[i];
     if (b < ContactTally::kMaxBodies) {
       tally.fx[b] += fx;
@@ -258,11 +471,8 @@ void contact_forces(Simulation& sim, double dt) {
     contact_pairs(sim, dt, tally);
     // The pair loop splits the candidates, this loop all particles.
 #pragma omp barrier
-#pragma omp for schedule(static) nowait
-    for (std::size_t i = 0; i < n; ++i) {
-      p.ext_ax[i] += p.contact_ax[i];
-      p.ext_ay[i] += p.contact_ay[i];
-    }
+    const std::size_t team = omp_get_num_threads(), me = omp_get_thread_num();
+    add_contact_accelerations(sim, n * me / team, n * (me + 1) / team);
   }
   record_contact(sim, tally);
 }

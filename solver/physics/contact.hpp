@@ -33,6 +33,13 @@ struct ContactConfig {
   double D = 1.0;              // dimensionless stiffness coefficient of the paper's force
   double damping_ratio = 0.0;  // normal dashpot, fraction of critical for one pair
   double r0_over_dx = 1.0;     // interaction range r0 (the paper: the initial spacing)
+  // Surface model: radius, in the particle's spacings, of the surface
+  // neighbourhood over which a contact is measured and its force spread
+  // (contact_smoothing.hpp); 0 acts on single particles.
+  double smoothing_spacings = 3.0;
+  // Surface model: the normal law gives the continuum's near-field
+  // compliance (contact_near_field.hpp); false: the linear law with D.
+  bool near_field = true;
 };
 
 // What the contact did in the last step.
@@ -55,6 +62,22 @@ struct ContactState {
   // acceleration stays zero.
   std::vector<std::uint32_t> candidates;
   std::size_t prepared_build = 0;  // the list's build these belong to
+  // Surface smoothing (contact_smoothing.hpp), built once per run from the
+  // reference configuration: per source i its receivers k and weights W_ki
+  // (rows sum to one), the transposed table per receiver, and the offset
+  // X_i - sum_k W_ki X_k that puts the smoothed point back on particle i.
+  bool smoothing_built = false;
+  std::vector<std::uint32_t> smooth_rows, smooth_k;
+  std::vector<double> smooth_w;
+  std::vector<std::uint32_t> spread_rows, spread_i;
+  std::vector<double> spread_w;
+  std::vector<double> smooth_offset_x, smooth_offset_y;
+  // Each surface particle's log-moment Lambda (contact_near_field.hpp).
+  std::vector<double> log_moment;
+  // Per source, this step: the moment of its force about the weighted
+  // centroid of its receivers over their weighted polar moment, and that
+  // centroid (add_contact_accelerations applies the couple).
+  std::vector<double> couple, centroid_x, centroid_y;
 };
 
 namespace physics {
@@ -111,6 +134,22 @@ inline void turn_surface_normal(const Particles& p, ContactState& state, std::si
 // calling thread's share of the totals. Reads positions, velocities,
 // density and the turned normals.
 void contact_pairs(Simulation& sim, double dt, ContactTally& tally);
+// Contact accelerations of particles lo .. hi added to ext_ax/ext_ay: each
+// particle's own (contact_ax), or with surface smoothing the share of the
+// forces of the sources in its neighbourhood. Reads what contact_pairs wrote
+// (call after a barrier).
+void add_contact_accelerations(Simulation& sim, std::size_t lo, std::size_t hi);
+// Whether the contact forces are spread (surface model with smoothing).
+bool contact_smoothing(const Simulation& sim);
+// Smoothed position and velocity of surface particle i (contact_smoothing.hpp),
+// (nx, ny) its turned normal, which gives the material rotation. Needs the
+// tables prepare_contact builds.
+struct SmoothedPoint {
+  double x, y, vx, vy;
+  double ox = 0.0, oy = 0.0;  // the turned offset from the weighted centroid
+};
+SmoothedPoint smoothed_point(const Particles& p, const ContactState& st, std::size_t i, double nx,
+                             double ny);
 // The totals of all threads into sim.contact_state and the energy ledger.
 void record_contact(Simulation& sim, const ContactTally& tally);
 

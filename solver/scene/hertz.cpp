@@ -148,6 +148,9 @@ Scene build_hertz(const SceneInput& in) {
   sim.damping_1_s = omega1;
   sim.load_ramp_s = 10.0 * 2.0 * std::numbers::pi / omega1;
   scene.default_end_s = 2.0 * sim.load_ramp_s;
+  // The contact is resolved (a over several spacings): the pressure is read
+  // from single pairs, not smoothed over the surface.
+  scene.contact_smoothing_spacings = 0.0;
 
   // Where the pressure is read: every block particle that can take contact
   // forces. The surface model spreads a pair's force over the particles

@@ -15,6 +15,7 @@
 #include "solver/geometry/lattice_fill.hpp"
 #include "solver/geometry/mesh_placement.hpp"
 #include "solver/geometry/rack_profile.hpp"
+#include "solver/physics/contact_near_field.hpp"
 #include "solver/scene/builders.hpp"
 #include "solver/scene/rack_pinion.hpp"
 
@@ -100,7 +101,8 @@ std::vector<int> choose_rack_offsets(const nlohmann::json& choice, const GearLay
 // and transmission error, the hub's rate and torque, the contact force,
 // and per modelled tooth its root stress (fillet particles and section
 // bending) and contact force. Particles of no tooth have tooth_of = INT_MIN.
-void add_gear_histories(Scene& scene, const GearLayout& L, const std::vector<int>& tooth_of) {
+void add_gear_histories(Scene& scene, const GearLayout& L, const std::vector<int>& tooth_of,
+                        double e_star) {
   const Particles& p = scene.sim.particles;
   const double b = L.face_width_m, r = L.pitch_radius;
   const std::size_t rb0 = scene.sim.bodies[1].begin, rb1 = scene.sim.bodies[1].end;
@@ -181,6 +183,26 @@ void add_gear_histories(Scene& scene, const GearLayout& L, const std::vector<int
              fy += q.mass[i] * q.contact_ay[i];
            }
            return b * std::hypot(fx, fy);
+         }});
+    // A Hertz sub-model on the resolved load: the line-contact peak pressure
+    // for the tooth's contact force per unit face width and the curvature of
+    // its flank where the force acts (force-weighted), the rack flank being
+    // straight. The basis of ISO 6336-2's sigma_H; not read from particles.
+    scene.columns.push_back(
+        {"contact_pressure" + sk + "_Pa", [tooth_of, k, e_star](const Simulation& s2) {
+           const Particles& q = s2.particles;
+           double fx = 0, fy = 0, wsum = 0, ksum = 0;
+           for (std::size_t i = 0; i < q.n; ++i) {
+             if (tooth_of[i] != k) continue;
+             const double ax = q.contact_ax[i], ay = q.contact_ay[i];
+             fx += q.mass[i] * ax;
+             fy += q.mass[i] * ay;
+             const double w = q.mass[i] * std::hypot(ax, ay);
+             wsum += w;
+             ksum += w * q.surf_curvature[i];
+           }
+           return wsum > 0 ? physics::hertz_peak_pressure(std::hypot(fx, fy), e_star, ksum / wsum)
+                           : 0.0;
          }});
   }
 }
@@ -529,7 +551,9 @@ Scene build_rack_pinion(const SceneInput& in) {
     L.roots = std::make_shared<const RootMonitor>(sim, 0, pinion_teeth, std::move(fillets), 1);
   }
 
-  add_gear_histories(scene, L, tooth_of);
+  L.contact_modulus =
+      1.0 / ((1.0 - mat_p.nu * mat_p.nu) / mat_p.E + (1.0 - mat_r.nu * mat_r.nu) / mat_r.E);
+  add_gear_histories(scene, L, tooth_of, L.contact_modulus);
   // Probe particles: the tooth in mesh at its pitch circle on the driving
   // flank, the rack tooth it drives, and the middle of the rack's back.
   const double drive_side = L.omega <= 0 ? -1.0 : 1.0;

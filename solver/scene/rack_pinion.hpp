@@ -35,6 +35,7 @@ struct GearLayout {
   gear::ContactPath path;
   gear::IsoToothForm iso_tip, iso_hpstc, iso_pitch;
   double lewis_Y = 0.0;
+  double contact_modulus = 0.0;     // E* of pinion and rack [Pa]
   double iso_mesh_stiffness = 0.0;  // c' [N/m per m of face width], ISO 6336-1
   // The largest contact force an elastic mesh can see from the start: the
   // load plus the impact of the initial mismatch of pitch-line speeds on the

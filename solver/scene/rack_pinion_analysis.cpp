@@ -73,6 +73,57 @@ double tooth0_load_radius(const GearLayout& L, const Simulation& sim) {
   return wsum > 0.0 ? rsum / wsum : 0.0;
 }
 
+// Where the mesh's compliance sits in a static check, each part's
+// deflection along the contact normal per unit line load [um mm / N]:
+// the pinion (tooth and body to the held hub) at its contact point, the
+// contact (the pair law's overlap: near field and series spring), and the
+// rack (tooth and body) from its contact point to its mean displacement,
+// whose sum is the transmission error's 1/c'. Contact points are the
+// contact-force-weighted smoothed points of each body's loaded particles
+// (physics/contact_smoothing.hpp), their displacements from the reference.
+nlohmann::json compliance_split(const Simulation& sim, double delta_total_m, double load_N_per_mm) {
+  const Particles& p = sim.particles;
+  const ContactState& st = sim.contact_state;
+  const bool smooth = st.smoothing_built;
+  // The normal: the direction of the contact force on the pinion (body 0).
+  double fx = 0.0, fy = 0.0;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    if (p.body[i] != 0) continue;
+    fx += p.mass[i] * p.contact_ax[i];
+    fy += p.mass[i] * p.contact_ay[i];
+  }
+  const double fn = std::hypot(fx, fy);
+  if (fn <= 0.0 || load_N_per_mm <= 0.0) return nullptr;
+  const double nx = fx / fn, ny = fy / fn;
+  auto contact_point_displacement = [&](int body) {
+    double wsum = 0.0, usum = 0.0;
+    for (std::size_t i = 0; i < p.n; ++i) {
+      if (p.body[i] != body) continue;
+      const double w = p.mass[i] * std::hypot(p.contact_ax[i], p.contact_ay[i]);
+      if (w <= 0.0) continue;
+      double ux = p.x[i] - p.x0[i], uy = p.y[i] - p.y0[i];
+      if (smooth && st.smooth_rows[i] != st.smooth_rows[i + 1]) {
+        ux = uy = 0.0;
+        for (std::uint32_t e = st.smooth_rows[i]; e < st.smooth_rows[i + 1]; ++e) {
+          const std::uint32_t k = st.smooth_k[e];
+          ux += st.smooth_w[e] * (p.x[k] - p.x0[k]);
+          uy += st.smooth_w[e] * (p.y[k] - p.y0[k]);
+        }
+      }
+      wsum += w;
+      usum += w * (ux * nx + uy * ny);
+    }
+    return wsum > 0.0 ? usum / wsum : 0.0;
+  };
+  const double pinion = contact_point_displacement(0);
+  const double rack = contact_point_displacement(1);
+  const double to_um = 1e6 / load_N_per_mm;
+  return {{"pinion_um_mm_per_N", pinion * to_um},
+          {"contact_um_mm_per_N", (rack - pinion) * to_um},
+          {"rack_um_mm_per_N", (delta_total_m - rack) * to_um},
+          {"total_um_mm_per_N", delta_total_m * to_um}};
+}
+
 // ISO 6336-3 form factors at a load radius, interpolated in the table.
 gear::IsoToothForm iso_at(const GearLayout& L, double radius) {
   const std::vector<gear::IsoToothForm>& t = L.iso_by_radius;
@@ -265,12 +316,54 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
         {"spacing_m", L.spacing},
         {"fine_spacing_m", L.fine_spacing}};
     if (a.contains("mesh_stiffness_N_per_mm_um")) {
+      a["static_check"]["mesh_stiffness_N_per_mm_um"] = a["mesh_stiffness_N_per_mm_um"];
+      a["static_check"]["iso_mesh_stiffness_N_per_mm_um"] = 1e-9 * L.iso_mesh_stiffness;
       a["static_check"]["mesh_stiffness_error_vs_iso"] =
           a["mesh_stiffness_N_per_mm_um"].get<double>() / (1e-9 * L.iso_mesh_stiffness) - 1.0;
+      // Along the line of action: delta_n = delta_x cos(alpha), per F_bt / b.
+      const double c = std::cos(L.pressure_angle);
+      a["static_check"]["mesh_compliance"] =
+          compliance_split(final_state, std::abs(te_mean) * c, L.load_N / c / (1e3 * b));
     }
   }
 
+  // The largest Hertz contact pressure of any modelled tooth over the run
+  // (a sub-model on the resolved tooth force, history contact_pressure_t<k>_Pa).
+  double p_max = 0.0, p_time = 0.0;
+  int p_tooth = 0;
+  for (int k : L.pinion_teeth) {
+    const long col = h.index("contact_pressure_t" + std::to_string(k) + "_Pa");
+    if (col < 0) continue;
+    for (std::size_t row = 0; row < h.rows(); ++row) {
+      const double v = h.at(row, static_cast<std::size_t>(col));
+      if (v > p_max) {
+        p_max = v;
+        p_time = t[row];
+        p_tooth = k;
+      }
+    }
+  }
+  if (a.contains("static_check") && h.rows() > 0) {
+    nlohmann::json& sc = a["static_check"];
+    const double hertz =
+        h.at(h.rows() - 1, static_cast<std::size_t>(h.index("contact_pressure_t0_Pa")));
+    // ISO 6336-2's nominal contact stress for tooth 0's load alone (one
+    // pair: Z_eps = 1), Z_beta = 1 (spur), u -> infinity (rack).
+    const double iso_h =
+        gear::iso_sigma_H0(sc.at("tooth0_force_N").get<double>() * std::cos(L.pressure_angle),
+                           2.0 * L.pitch_radius, b, L.pressure_angle, L.contact_modulus);
+    sc["hertz_peak_pressure_Pa"] = hertz;
+    sc["iso_sigma_H0_Pa"] = iso_h;
+    sc["hertz_peak_pressure_note"] =
+        "Hertz line contact on tooth 0's resolved force and its flank's curvature where the "
+        "force acts (a sub-model, not read from particles); ISO's sigma_H0 is the same at the "
+        "pitch point";
+  }
+
   a["summary_fields"] = {
+      {"max_contact_pressure_Pa", p_max},
+      {"max_contact_pressure_tooth", p_tooth},
+      {"max_contact_pressure_time_s", p_time},
       {"velocity_stability_time_s", t_stable},
       {"max_contact_force_N", f_max},
       {"max_contact_force_time_s", t.empty() ? 0.0 : t[k_max]},

@@ -38,6 +38,10 @@ struct Scene {
   std::function<nlohmann::json(const History&, const Simulation&)> analyse;
   // Scene defaults used when the job leaves them open.
   double default_end_s = 0.0;
+  // Surface smoothing of the contact (physics/contact_smoothing.hpp), in
+  // spacings, when the job does not set /method/contact/smoothing_spacings:
+  // a scene whose contact the particles resolve (hertz) sets 0.
+  double contact_smoothing_spacings = 3.0;
   double default_dt_s = 0.0;  // 0: the automatic step (a fraction of the stable limit)
   std::vector<Outline> outlines;
   // What was modelled, for the summary (counts, dimensions, notes).

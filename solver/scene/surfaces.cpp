@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
+#include <vector>
 
 #include "solver/neighbours/cell_grid.hpp"
 
@@ -13,6 +15,8 @@ namespace {
 struct Closest {
   double distance = std::numeric_limits<double>::infinity();
   double nx = 0.0, ny = 0.0;  // outward normal
+  std::size_t edge = 0;       // the closest point lies on edge (edge, edge + 1)
+  double t = 0.0;             // at this fraction of it
 };
 
 // Closest point of segment (a, b) of a counter-clockwise outline to p, and
@@ -28,6 +32,7 @@ void closest_on_segment(const std::array<double, 2>& a, const std::array<double,
   const double d = std::hypot(px - qx, py - qy);
   if (d >= best.distance) return;
   best.distance = d;
+  best.t = t;
   if ((t > 0.0 && t < 1.0) || d < 1e-12) {
     const double len = std::sqrt(len2);
     // Right-hand normal of a CCW edge points outward.
@@ -49,6 +54,72 @@ bool counter_clockwise(const Outline& o) {
   return area > 0.0;
 }
 
+// The outline's direction as a function of arc length, for curvatures
+// averaged over a stretch: arc[k] is the arc length at vertex k (arc[m] the
+// perimeter), angle[k] the direction of edge k unwrapped, counting turns
+// toward the body's outside as convex.
+struct Turning {
+  static constexpr double kSmoothTurn = 10.0 * std::numbers::pi / 180.0;
+  std::vector<double> arc, angle;
+  double perimeter = 0.0, total_turn = 0.0;
+
+  Turning(const Outline& o, bool ccw) {
+    const std::size_t m = o.points.size();
+    arc.assign(m + 1, 0.0);
+    angle.assign(m, 0.0);
+    for (std::size_t k = 0; k < m; ++k) {
+      const auto& a = o.points[k];
+      const auto& b = o.points[(k + 1) % m];
+      arc[k + 1] = arc[k] + std::hypot(b[0] - a[0], b[1] - a[1]);
+      double th = std::atan2(b[1] - a[1], b[0] - a[0]);
+      if (!ccw) th = -th;  // a clockwise outline turns the other way
+      if (k > 0) {
+        while (th - angle[k - 1] > std::numbers::pi) th -= 2.0 * std::numbers::pi;
+        while (th - angle[k - 1] < -std::numbers::pi) th += 2.0 * std::numbers::pi;
+      }
+      angle[k] = th;
+    }
+    perimeter = arc[m];
+    total_turn = 2.0 * std::numbers::pi;  // a simple closed outline turns once
+  }
+
+  // Direction at arc length s (any real s: the outline repeats): linear
+  // between the midpoints of edges that meet at less than 10 degrees (a
+  // polyline drawn along a curve, whose curvature then comes out right
+  // whatever the window against the edge length), a step at a vertex with a
+  // larger turn (a corner of the outline).
+  double direction(double s) const {
+    const std::size_t m = angle.size();
+    const double turns = std::floor(s / perimeter);
+    const double r = s - turns * perimeter;
+    const std::size_t k = std::min<std::size_t>(
+        m - 1, static_cast<std::size_t>(std::upper_bound(arc.begin(), arc.end() - 1, r) -
+                                        arc.begin() - 1));
+    const double mid = 0.5 * (arc[k] + arc[k + 1]);
+    // The neighbouring edge on r's side of the midpoint, and its angle and
+    // midpoint continued across the outline's start.
+    const bool after = r >= mid;
+    const std::size_t n = after ? (k + 1) % m : (k + m - 1) % m;
+    double a_n = angle[n], s_n = 0.5 * (arc[n] + arc[n + 1]);
+    if (after && n == 0) {
+      a_n += total_turn;
+      s_n += perimeter;
+    }
+    if (!after && k == 0) {
+      a_n -= total_turn;
+      s_n -= perimeter;
+    }
+    double a = angle[k];
+    if (std::abs(a_n - a) < kSmoothTurn && s_n != mid) a += (r - mid) / (s_n - mid) * (a_n - a);
+    return a + turns * total_turn;
+  }
+
+  // Mean curvature over [s - w/2, s + w/2]: the turn of the direction across it.
+  double mean_curvature(double s, double w) const {
+    return (direction(s + 0.5 * w) - direction(s - 0.5 * w)) / w;
+  }
+};
+
 void from_outline(Simulation& sim, const Body& body, const Outline& o) {
   Particles& p = sim.particles;
   // Body-fitted particles: the outline row alone (its particles lie on the
@@ -57,6 +128,7 @@ void from_outline(Simulation& sim, const Body& body, const Outline& o) {
   const double reach = body.fitted ? 1e-6 * dx : kSurfaceReachOverDx * dx;
   const bool ccw = counter_clockwise(o);
   const std::size_t m = o.points.size();
+  const Turning turning(o, ccw);
   // Bin the outline's edges by their midpoints on a grid of cells larger
   // than any edge plus the reach, so each particle checks a few cells only.
   double longest = 0.0;
@@ -73,12 +145,17 @@ void from_outline(Simulation& sim, const Body& body, const Outline& o) {
   for (std::size_t i = body.begin; i < body.end; ++i) {
     Closest best;
     grid.for_each_near(p.x0[i], p.y0[i], [&](std::uint32_t k) {
+      const double before = best.distance;
       closest_on_segment(o.points[k], o.points[(k + 1) % m], p.x0[i], p.y0[i], ccw, best);
+      if (best.distance < before) best.edge = k;
     });
     if (best.distance <= reach) {
       p.surf_depth[i] = body.fitted ? 0.0 : best.distance;
       p.surf_nx[i] = best.nx;
       p.surf_ny[i] = best.ny;
+      const double s =
+          turning.arc[best.edge] + best.t * (turning.arc[best.edge + 1] - turning.arc[best.edge]);
+      p.surf_curvature[i] = turning.mean_curvature(s, p.spacing[i]);
     }
   }
 }
