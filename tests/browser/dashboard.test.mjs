@@ -232,6 +232,7 @@ try {
   check(await page.locator("#fillet").count() === 0, "a dynamic run has no fillet stress panel");
   const summary = await page.locator("#summary-table").textContent();
   check(/Max von Mises stress/.test(summary) && /Velocity-stability time/.test(summary), "the summary shows max stress and stability time");
+  check(/Max contact pressure\s*[\d.]+ MPa/.test(summary), "the summary shows the Hertz contact pressure of a run whose teeth touched");
   for (const name of ["results.h5", "results.xmf", "history.csv", "summary.json"]) {
     check(await page.locator(`#downloads a[download="${name}"]`).count() === 1, `download link for ${name}`);
   }
