@@ -36,7 +36,7 @@ struct ContactConfig {
   // Surface model: radius, in the particle's spacings, of the surface
   // neighbourhood over which a contact is measured and its force spread
   // (contact_smoothing.hpp); 0 acts on single particles.
-  double smoothing_spacings = 4.0;
+  double smoothing_spacings = 3.0;
   // Surface model: the normal law gives the continuum's near-field
   // compliance (contact_near_field.hpp); false: the linear law with D.
   bool near_field = true;
