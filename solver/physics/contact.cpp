@@ -94,7 +94,7 @@ double contact_time_step_limit(const Simulation& sim) {
       const double inv_m = 1.0 / (ma.rho0 * va) + 1.0 / (mb.rho0 * vb);
       // The surface law's lateral hat weights add up to one over a row of
       // partners: one partner's stiffness at most (the near-field law's
-      // tangent stiffness never exceeds its series spring's).
+      // tangent stiffness never exceeds its bound).
       omega2 = std::max(omega2, (near ? 1.0 : kPartnersAtOnce) * k * inv_m);
     }
   }
@@ -168,6 +168,8 @@ void build_smoothing(Simulation& sim) {
   st.smooth_w.clear();
   st.smooth_offset_x.assign(p.n, 0.0);
   st.smooth_offset_y.assign(p.n, 0.0);
+  st.smooth_centre_x.assign(p.n, 0.0);
+  st.smooth_centre_y.assign(p.n, 0.0);
   std::vector<std::uint32_t> incoming(p.n, 0);
   for (std::size_t i = 0; i < p.n; ++i) {
     double total = 0.0;
@@ -183,6 +185,8 @@ void build_smoothing(Simulation& sim) {
     if (!rows[i].empty()) {
       st.smooth_offset_x[i] = p.x0[i] - mx;
       st.smooth_offset_y[i] = p.y0[i] - my;
+      st.smooth_centre_x[i] = mx;
+      st.smooth_centre_y[i] = my;
     }
     st.smooth_rows[i + 1] = static_cast<std::uint32_t>(st.smooth_k.size());
   }
@@ -232,24 +236,37 @@ void build_log_moments(Simulation& sim) {
 
 }  // namespace
 
-SmoothedPoint smoothed_point(const Particles& p, const ContactState& st, std::size_t i, double nx,
-                             double ny) {
+SmoothedPoint smoothed_point(const Particles& p, const ContactState& st, std::size_t i) {
   SmoothedPoint s{0.0, 0.0, 0.0, 0.0};
+  // The receivers' rotation theta = atan2(S, C) from their reference
+  // offsets A_k = X_k - sum W X (Procrustes): exact for a rigid motion, and
+  // a function of the receivers' positions alone, so the spread force below
+  // is the gradient of the gap it measures.
+  double sdot = 0.0, cdot = 0.0;
+  const double cx0 = st.smooth_centre_x[i], cy0 = st.smooth_centre_y[i];
   for (std::uint32_t e = st.smooth_rows[i]; e < st.smooth_rows[i + 1]; ++e) {
     const std::uint32_t k = st.smooth_k[e];
     const double w = st.smooth_w[e];
+    const double ax = p.x0[k] - cx0, ay = p.y0[k] - cy0;
     s.x += w * p.x[k];
     s.y += w * p.y[k];
     s.vx += w * p.vx[k];
     s.vy += w * p.vy[k];
+    s.c += w * (ax * p.x[k] + ay * p.y[k]);
+    s.s += w * (ax * p.y[k] - ay * p.x[k]);
+    cdot += w * (ax * p.vx[k] + ay * p.vy[k]);
+    sdot += w * (ax * p.vy[k] - ay * p.vx[k]);
   }
-  // Rotation from the reference normal to the turned one.
-  const double c = p.surf_nx[i] * nx + p.surf_ny[i] * ny;
-  const double sn = p.surf_nx[i] * ny - p.surf_ny[i] * nx;
-  s.ox = c * st.smooth_offset_x[i] - sn * st.smooth_offset_y[i];
-  s.oy = sn * st.smooth_offset_x[i] + c * st.smooth_offset_y[i];
+  const double r2 = s.c * s.c + s.s * s.s;
+  if (!(r2 > 0.0)) return s;  // a single receiver: no offset
+  const double r = std::sqrt(r2), cos_t = s.c / r, sin_t = s.s / r;
+  s.ox = cos_t * st.smooth_offset_x[i] - sin_t * st.smooth_offset_y[i];
+  s.oy = sin_t * st.smooth_offset_x[i] + cos_t * st.smooth_offset_y[i];
   s.x += s.ox;
   s.y += s.oy;
+  const double omega = (s.c * sdot - s.s * cdot) / r2;  // d theta / dt
+  s.vx -= omega * s.oy;
+  s.vy += omega * s.ox;
   return s;
 }
 
@@ -268,10 +285,11 @@ void add_contact_accelerations(Simulation& sim, std::size_t lo, std::size_t hi) 
     for (std::uint32_t e = st.spread_rows[k]; e < st.spread_rows[k + 1]; ++e) {
       const std::uint32_t i = st.spread_i[e];
       const double w = st.spread_w[e];
-      // The share of the force, and of the couple: w M / J z x (x_k - c_i).
-      const double m = w * st.couple[i];
-      fx += w * p.mass[i] * p.contact_ax[i] - m * (p.y[k] - st.centroid_y[i]);
-      fy += w * p.mass[i] * p.contact_ay[i] + m * (p.x[k] - st.centroid_x[i]);
+      // The share of the force, and of the couple M dtheta/dx_k =
+      // w M (C z x A_k - S A_k) / (C^2 + S^2).
+      const double ax = p.x0[k] - st.smooth_centre_x[i], ay = p.y0[k] - st.smooth_centre_y[i];
+      fx += w * (p.mass[i] * p.contact_ax[i] - st.couple_c[i] * ay - st.couple_s[i] * ax);
+      fy += w * (p.mass[i] * p.contact_ay[i] + st.couple_c[i] * ax - st.couple_s[i] * ay);
     }
     p.ext_ax[k] += fx / p.mass[k];
     p.ext_ay[k] += fy / p.mass[k];
@@ -299,9 +317,8 @@ void prepare_contact(Simulation& sim) {
   std::fill(p.contact_ax.begin(), p.contact_ax.end(), 0.0);
   std::fill(p.contact_ay.begin(), p.contact_ay.end(), 0.0);
   if (contact_smoothing(sim)) {
-    state.couple.assign(p.n, 0.0);  // allocates at the first build only
-    state.centroid_x.assign(p.n, 0.0);
-    state.centroid_y.assign(p.n, 0.0);
+    state.couple_c.assign(p.n, 0.0);  // allocates at the first build only
+    state.couple_s.assign(p.n, 0.0);
   }
   state.prepared_build = nl.builds();
 }
@@ -325,12 +342,12 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
     const double vi = p.mass[i] / p.rho[i];
     // Where i touches (contact_smoothing.hpp): its smoothed point, or itself.
     SmoothedPoint si{p.x[i], p.y[i], p.vx[i], p.vy[i]};
-    if (smooth) si = smoothed_point(p, st, i, normal_x[i], normal_y[i]);
+    if (smooth) si = smoothed_point(p, st, i);
     double fx = 0.0, fy = 0.0;
     for (std::uint32_t k = nl.rows[i]; k < nl.rows[i + 1]; ++k) {
       const std::uint32_t j = nl.j[k];
       SmoothedPoint sj{p.x[j], p.y[j], p.vx[j], p.vy[j]};
-      if (smooth) sj = smoothed_point(p, st, j, normal_x[j], normal_y[j]);
+      if (smooth) sj = smoothed_point(p, st, j);
       const double dxij = si.x - sj.x, dyij = si.y - sj.y;
       // The pair's spacing: the coarser of the two, so that the hat weight
       // of a fine particle spans its coarse partners' row (graded particles;
@@ -404,22 +421,15 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
     p.contact_ax[i] = fx / p.mass[i];
     p.contact_ay[i] = fy / p.mass[i];
     if (smooth) {
-      // The force acts at the smoothed point, the turned offset (ox, oy)
-      // away from the receivers' weighted centroid; spread as a force at
-      // the centroid alone it would miss the moment (ox, oy) x f, whose
-      // work the penalty energy sees as the body turns: with it the
-      // contact stays conservative under rotation (contact_smoothing.hpp).
-      const double cx = si.x - si.ox, cy = si.y - si.oy;
-      double polar = 0.0;
-      for (std::uint32_t e = st.smooth_rows[i]; e < st.smooth_rows[i + 1]; ++e) {
-        const std::uint32_t k = st.smooth_k[e];
-        polar += st.smooth_w[e] * ((p.x[k] - cx) * (p.x[k] - cx) + (p.y[k] - cy) * (p.y[k] - cy));
-      }
-      const double moment = si.ox * fy - si.oy * fx;
+      // The force acts at the smoothed point, the turned offset o away from
+      // the receivers' weighted centroid; its moment o x f does work as the
+      // receivers turn, and is spread as M dtheta/dx_k: with it the spread
+      // force is the gradient of the penalty energy (contact_smoothing.hpp).
+      const double r2 = si.c * si.c + si.s * si.s;
+      const double moment = r2 > 0.0 ? (si.ox * fy - si.oy * fx) / r2 : 0.0;
       ContactState& out = sim.contact_state;
-      out.couple[i] = polar > 0.0 ? moment / polar : 0.0;
-      out.centroid_x[i] = cx;
-      out.centroid_y[i] = cy;
+      out.couple_c[i] = moment * si.c;
+      out.couple_s[i] = moment * si.s;
     }
     const int b = p.body[i];
     if (b < ContactTally::kMaxBodies) {

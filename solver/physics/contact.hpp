@@ -36,7 +36,7 @@ struct ContactConfig {
   // Surface model: radius, in the particle's spacings, of the surface
   // neighbourhood over which a contact is measured and its force spread
   // (contact_smoothing.hpp); 0 acts on single particles.
-  double smoothing_spacings = 3.0;
+  double smoothing_spacings = 4.0;
   // Surface model: the normal law gives the continuum's near-field
   // compliance (contact_near_field.hpp); false: the linear law with D.
   bool near_field = true;
@@ -74,10 +74,12 @@ struct ContactState {
   std::vector<double> smooth_offset_x, smooth_offset_y;
   // Each surface particle's log-moment Lambda (contact_near_field.hpp).
   std::vector<double> log_moment;
-  // Per source, this step: the moment of its force about the weighted
-  // centroid of its receivers over their weighted polar moment, and that
-  // centroid (add_contact_accelerations applies the couple).
-  std::vector<double> couple, centroid_x, centroid_y;
+  // The receivers' weighted centroid in the reference configuration.
+  std::vector<double> smooth_centre_x, smooth_centre_y;
+  // Per source, this step: the moment M of its force about that centroid
+  // times dtheta/dC and dtheta/dS of its receivers' rotation
+  // (contact_smoothing.hpp); add_contact_accelerations applies the couple.
+  std::vector<double> couple_c, couple_s;
 };
 
 namespace physics {
@@ -141,15 +143,15 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally);
 void add_contact_accelerations(Simulation& sim, std::size_t lo, std::size_t hi);
 // Whether the contact forces are spread (surface model with smoothing).
 bool contact_smoothing(const Simulation& sim);
-// Smoothed position and velocity of surface particle i (contact_smoothing.hpp),
-// (nx, ny) its turned normal, which gives the material rotation. Needs the
-// tables prepare_contact builds.
+// Smoothed position and velocity of surface particle i (contact_smoothing.hpp):
+// the offset turned by its receivers' best-fit rotation. Needs the tables
+// prepare_contact builds.
 struct SmoothedPoint {
   double x, y, vx, vy;
   double ox = 0.0, oy = 0.0;  // the turned offset from the weighted centroid
+  double c = 0.0, s = 0.0;    // C = sum W A.x, S = sum W A x x (the rotation's sums)
 };
-SmoothedPoint smoothed_point(const Particles& p, const ContactState& st, std::size_t i, double nx,
-                             double ny);
+SmoothedPoint smoothed_point(const Particles& p, const ContactState& st, std::size_t i);
 // The totals of all threads into sim.contact_state and the energy ledger.
 void record_contact(Simulation& sim, const ContactTally& tally);
 

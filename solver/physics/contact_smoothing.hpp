@@ -18,15 +18,20 @@
 // particles k of its body within R = smoothing_spacings x spacing_i (a
 // Wendland C2 profile of the reference distance, normals within 60 degrees),
 // normalised so that sum_k W_ki = 1. The contact law then acts between
-//   smoothed points  xs_i = sum_k W_ki x_k + R_i (X_i - sum_k W_ki X_k)
-// (R_i the material rotation, from the turned normal), and the force f_i
-// found for particle i is applied to each k as W_ki f_i plus its share of
-// the couple of the offset o_i = R_i (X_i - sum W X): a moment
-// M_i = o_i x f_i spread as W_ki M_i / J_i z x (x_k - c_i) about the
-// centroid c_i, J_i = sum_k W_ki |x_k - c_i|^2. The spread force is then
-// the gradient of the same penalty energy also while the body turns (the
-// offset turns with it; without the couple the loaded gear gained energy),
-// momentum is kept to round-off (sum_k W_ki = 1, the couple has no net
+//   smoothed points  xs_i = sum_k W_ki x_k + R(theta_i) (X_i - sum_k W_ki X_k),
+// theta_i the best-fit (Procrustes) rotation of the receivers,
+// atan2(S, C) with C = sum W A_k . x_k, S = sum W A_k x x_k and
+// A_k = X_k - sum W X. xs_i is then a function of the receivers' positions
+// alone, and the force f_i found for particle i is its exact gradient: W_ki f_i
+// on each k, plus the moment of the offset, M_i = o_i x f_i, as
+// M_i dtheta_i/dx_k = W_ki M_i (C z x A_k - S A_k) / (C^2 + S^2) (for a
+// rigid motion, W M / J z x (x_k - c) about the centroid). The contact is
+// then conservative: through the bars' impact the energy balance stays
+// within 1 % at every radius (`Contact.SpreadContactKeepsTheEnergy...`);
+// turning the offset with the particle's own material rotation instead, as
+// first done, added 30 % of the kinetic energy at a radius of 4-5 spacings
+// and made the radius look as if it had to follow the body's size.
+// Momentum is kept to round-off (sum_k W_ki = 1, the couple has no net
 // force) and a rigid motion moves xs_i with x_i.
 //
 // What it does not do: it does not resolve the Hertz pressure under a

@@ -8,7 +8,10 @@
 // its flat top; the block's bottom rows are fixed. The load is ramped up and
 // the motion damped (dynamic relaxation) to reach the static state, where the
 // contact pressure is read from the contact forces on the block's top row
-// and fitted with the Hertz ellipse.
+// and fitted with the Hertz ellipse. On body-fitted particles
+// ("particles": "body_fitted") both bodies get a row on their true outline,
+// fine within 2a of the contact and graded to the bulk, and the pressure is
+// read from the block's outline row (docs/contact.md, "A resolved contact").
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -70,9 +73,19 @@ Scene build_hertz(const SceneInput& in) {
   scene.type = "hertz";
   Simulation& sim = scene.sim;
   sim.discretization = in.discretization;
-  if (sim.discretization.dx <= 0) sim.discretization.dx = a_ref / 6.0;
-  const double dx = sim.discretization.dx;
-  if (a_ref < 3.0 * dx) {
+  // Body-fitted (graded) particles are a variant: fine at the contact, a
+  // row on each true outline, coarse far from it (docs/contact.md).
+  const bool fitted =
+      particle_layout(in.discretization, ParticleLayout::Lattice) == ParticleLayout::BodyFitted;
+  Discretization& d = sim.discretization;
+  const double fine = fitted && d.fine_dx > 0 ? d.fine_dx : (d.dx > 0 ? d.dx : a_ref / 6.0);
+  if (d.dx <= 0) d.dx = fitted ? 4.0 * fine : a_ref / 6.0;
+  const double dx = d.dx;
+  if (fine > dx) {
+    throw JobError("/discretization/fine_spacing_m",
+                   "the fine spacing must not exceed the bulk spacing");
+  }
+  if (a_ref < 3.0 * fine) {
     throw JobError("/discretization", "the Hertz half-width a = " + std::to_string(a_ref) +
                                           " m spans fewer than 3 spacings; use a spacing of at "
                                           "most a/3 (several particles across a are needed)");
@@ -81,62 +94,110 @@ Scene build_hertz(const SceneInput& in) {
   const double cap_height = std::min(R, s.at("cap_height_over_a").get<double>() * a_ref);
   const double block_half = s.at("block_half_width_over_a").get<double>() * a_ref;
   const double block_depth = s.at("block_depth_over_a").get<double>() * a_ref;
-  const long fixed_rows = static_cast<long>(
-      std::ceil(kernel_support(sim.discretization.kernel) * sim.discretization.h_over_dx));
+  const double fixed_depth =
+      std::ceil(kernel_support(d.kernel) * d.h_over_dx) * dx;  // the block base's rows
 
-  sim.motions.push_back(Motion::fixed("block base"));
-  // Cylinder cap, centre (0, R), filled with concentric rings of particles
-  // so that its surface is the circle itself: on a square lattice the
-  // bottom row would be flat over |x| < sqrt(R dx), wider than the contact
-  // (a^2/2R is a fraction of dx), and the block would feel a flat punch.
-  // The lowest particle sits at y = dx/2, one spacing above the block's top
-  // row at -dx/2 (touching, zero force).
-  add_body(sim, "cylinder", mat_c);
-  for (double r = R - 0.5 * dx; r > R - cap_height && r > 0.5 * dx; r -= dx) {
-    const long count = std::lround(2.0 * std::numbers::pi * r / dx);
-    const double ring_volume = 2.0 * std::numbers::pi * r * dx / static_cast<double>(count);
-    for (long k = 0; k < count; ++k) {
-      // Start at the bottom point (0, R - r) so every ring has a particle on
-      // the axis of symmetry.
-      const double angle = -0.5 * std::numbers::pi + 2.0 * std::numbers::pi * k / count;
-      const double x = r * std::cos(angle), y = R + r * std::sin(angle);
-      if (y <= cap_height) add_particle(sim, x, y, 0, ring_volume);
-    }
-  }
-  end_body(sim);
-  add_body(sim, "block", mat_b);
-  const long bx = lattice::cells(2 * block_half, dx), by = lattice::cells(block_depth, dx);
-  lattice::fill_rectangle(-0.5 * bx * dx, -by * dx, bx, by, dx, [&](double x, double y) {
-    add_particle(sim, x, y, y < -(by - fixed_rows) * dx ? 1 : 0);
-  });
-  end_body(sim);
-
-  // Outlines: the cap (circular arc closed by its top chord) and the block.
+  // The cap's outline: its circular arc closed by its top chord.
+  Outline cap{"cylinder", 0, {}, true};
   {
-    Outline cap{"cylinder", 0, {}, true};
     const double a_top = std::asin(std::clamp((cap_height - R) / R, -1.0, 1.0));
     const int n_arc = 720;
     for (int k = 0; k <= n_arc; ++k) {
       // From the right end of the chord, down around the bottom, to the left end.
-      const double a = a_top - (std::numbers::pi + 2.0 * a_top) * k / n_arc;
-      cap.points.push_back({R * std::cos(a), R + R * std::sin(a)});
+      const double t = a_top - (std::numbers::pi + 2.0 * a_top) * k / n_arc;
+      cap.points.push_back({R * std::cos(t), R + R * std::sin(t)});
     }
     std::reverse(cap.points.begin(), cap.points.end());  // counter-clockwise
-    scene.outlines.push_back(cap);
-    const double hx = 0.5 * bx * dx, by0 = -by * dx;
-    scene.outlines.push_back({"block", 1, {{-hx, by0}, {hx, by0}, {hx, 0.0}, {-hx, 0.0}}, true});
   }
-  // Uniform traction P' on the cap's top row.
+  sim.motions.push_back(Motion::fixed("block base"));
+  double block_width = 0.0, block_bottom = 0.0;
+  if (fitted) {
+    // Fine within 2a of the contact on both outlines, graded to the bulk.
+    geometry::Polygon cap_poly;
+    std::vector<geometry::Point> arc;
+    for (const auto& q : cap.points) {
+      cap_poly.push_back({q[0], q[1]});
+      if (std::abs(q[0]) <= 2.0 * a_ref && q[1] < R) arc.push_back({q[0], q[1]});
+    }
+    add_body(sim, "cylinder", mat_c);
+    geometry::SpacingField cap_field(dx, d.grading > 0 ? d.grading : geometry::kDefaultGrading);
+    cap_field.add_feature(arc, fine);
+    add_body_fitted(sim, geometry::make_region(cap_poly), cap_field,
+                    [](double, double) { return 0; });
+    end_body(sim);
+    add_body(sim, "block", mat_b);
+    geometry::SpacingField block_field(dx, d.grading > 0 ? d.grading : geometry::kDefaultGrading);
+    block_field.add_feature({{-2.0 * a_ref, 0.0}, {2.0 * a_ref, 0.0}}, fine);
+    // The top edge as many short edges: the outline row is spaced edge by
+    // edge, so one long edge would take the finest spacing along all of it.
+    geometry::Polygon rect = {{-block_half, -block_depth}, {block_half, -block_depth}};
+    const int top_edges = static_cast<int>(std::ceil(2.0 * block_half / fine));
+    for (int k = 0; k <= top_edges; ++k) {
+      rect.push_back({block_half - 2.0 * block_half * k / top_edges, 0.0});
+    }
+    add_body_fitted(sim, geometry::make_region(rect), block_field,
+                    [&](double, double y) { return y < -block_depth + fixed_depth ? 1 : 0; });
+    end_body(sim);
+    block_width = 2.0 * block_half;
+    block_bottom = -block_depth;
+  } else {
+    // Cylinder cap, centre (0, R), filled with concentric rings of particles
+    // so that its surface is the circle itself: on a square lattice the
+    // bottom row would be flat over |x| < sqrt(R dx), wider than the contact
+    // (a^2/2R is a fraction of dx), and the block would feel a flat punch.
+    // The lowest particle sits at y = dx/2, one spacing above the block's top
+    // row at -dx/2 (touching, zero force).
+    add_body(sim, "cylinder", mat_c);
+    for (double r = R - 0.5 * dx; r > R - cap_height && r > 0.5 * dx; r -= dx) {
+      const long count = std::lround(2.0 * std::numbers::pi * r / dx);
+      const double ring_volume = 2.0 * std::numbers::pi * r * dx / static_cast<double>(count);
+      for (long k = 0; k < count; ++k) {
+        // Start at the bottom point (0, R - r) so every ring has a particle on
+        // the axis of symmetry.
+        const double angle = -0.5 * std::numbers::pi + 2.0 * std::numbers::pi * k / count;
+        const double x = r * std::cos(angle), y = R + r * std::sin(angle);
+        if (y <= cap_height) add_particle(sim, x, y, 0, ring_volume);
+      }
+    }
+    end_body(sim);
+    add_body(sim, "block", mat_b);
+    const long bx = lattice::cells(2 * block_half, dx), by = lattice::cells(block_depth, dx);
+    lattice::fill_rectangle(-0.5 * bx * dx, -by * dx, bx, by, dx, [&](double x, double y) {
+      add_particle(sim, x, y, y < -by * dx + fixed_depth ? 1 : 0);
+    });
+    end_body(sim);
+    block_width = bx * dx;
+    block_bottom = -by * dx;
+  }
+  scene.outlines.push_back(cap);
+  {
+    const double hx = 0.5 * block_width;
+    scene.outlines.push_back(
+        {"block", 1, {{-hx, block_bottom}, {hx, block_bottom}, {hx, 0.0}, {-hx, 0.0}}, true});
+  }
+  // Uniform traction P' on the cap's top: the lattice's top row in equal
+  // shares, or the outline particles on the chord, each its share of the
+  // chord's length.
   Particles& p = sim.particles;
   const Body& cyl = sim.bodies[0];
   double top = -1e300;
   for (std::size_t i = cyl.begin; i < cyl.end; ++i) top = std::max(top, p.y[i]);
   std::vector<std::size_t> top_row;
   for (std::size_t i = cyl.begin; i < cyl.end; ++i) {
-    if (p.y[i] > top - 0.5 * dx) top_row.push_back(i);
+    if (p.y[i] > top - (fitted ? 1e-9 * R : 0.5 * dx)) top_row.push_back(i);
   }
-  for (std::size_t i : top_row) {
-    p.load_ay[i] = -load / static_cast<double>(top_row.size()) / p.mass[i];
+  std::sort(top_row.begin(), top_row.end(),
+            [&](std::size_t u, std::size_t v) { return p.x[u] < p.x[v]; });
+  const double chord_lo = p.x[top_row.front()], chord_hi = p.x[top_row.back()];
+  for (std::size_t k = 0; k < top_row.size(); ++k) {
+    const std::size_t i = top_row[k];
+    double share = 1.0 / static_cast<double>(top_row.size());
+    if (fitted) {
+      const double lo = k == 0 ? chord_lo : 0.5 * (p.x[top_row[k - 1]] + p.x[i]);
+      const double hi = k + 1 == top_row.size() ? chord_hi : 0.5 * (p.x[i] + p.x[top_row[k + 1]]);
+      share = (hi - lo) / (chord_hi - chord_lo);
+    }
+    p.load_ay[i] = -load * share / p.mass[i];
   }
   sim.domain = grown_bounds(p, 2 * R);
 
@@ -152,18 +213,41 @@ Scene build_hertz(const SceneInput& in) {
   // from single pairs, not smoothed over the surface.
   scene.contact_smoothing_spacings = 0.0;
 
-  // Where the pressure is read: every block particle that can take contact
-  // forces. The surface model spreads a pair's force over the particles
-  // within a spacing of the surface, so the top row alone misses part of it;
-  // the forces are summed per lattice column of the block.
+  // Where the pressure is read. Lattice: every block particle that can take
+  // contact forces (the surface model spreads a pair's force over the
+  // particles within a spacing of the surface, so the top row alone misses
+  // part of it), summed per lattice column. Body-fitted: the outline row,
+  // each particle's force over its share of the surface.
   std::vector<std::size_t> surface;
   std::vector<long> column;
+  std::vector<double> xs, widths;
   const Body& blk = sim.bodies[1];
-  const double x_left = -0.5 * bx * dx;
-  for (std::size_t i = blk.begin; i < blk.end; ++i) {
-    if (p.y[i] > -2.5 * dx) {
-      surface.push_back(i);
-      column.push_back(std::lround((p.x[i] - x_left) / dx - 0.5));
+  const double x_left = -0.5 * block_width;
+  if (fitted) {
+    for (std::size_t i = blk.begin; i < blk.end; ++i) {
+      if (p.y[i] > -1e-9 * R) surface.push_back(i);
+    }
+    std::sort(surface.begin(), surface.end(),
+              [&](std::size_t u, std::size_t v) { return p.x[u] < p.x[v]; });
+    for (std::size_t k = 0; k < surface.size(); ++k) {
+      const double x = p.x[surface[k]];
+      const double lo = k == 0 ? x_left : 0.5 * (p.x[surface[k - 1]] + x);
+      const double hi = k + 1 == surface.size() ? -x_left : 0.5 * (x + p.x[surface[k + 1]]);
+      column.push_back(static_cast<long>(k));
+      xs.push_back(x);
+      widths.push_back(hi - lo);
+    }
+  } else {
+    const long bx = std::lround(block_width / dx);
+    for (std::size_t i = blk.begin; i < blk.end; ++i) {
+      if (p.y[i] > -2.5 * dx) {
+        surface.push_back(i);
+        column.push_back(std::lround((p.x[i] - x_left) / dx - 0.5));
+      }
+    }
+    for (long k = 0; k < bx; ++k) {
+      xs.push_back(x_left + (static_cast<double>(k) + 0.5) * dx);
+      widths.push_back(dx);
     }
   }
   scene.columns.push_back({"contact_load_fraction", [surface, load](const Simulation& s2) {
@@ -177,20 +261,22 @@ Scene build_hertz(const SceneInput& in) {
                        {"reference_peak_pressure_Pa", p0_ref},
                        {"contact_modulus_Pa", e_star},
                        {"cap_height_m", cap_height},
-                       {"block_width_m", bx * dx},
-                       {"block_depth_m", by * dx},
-                       {"particles_across_half_width", a_ref / dx}};
+                       {"block_width_m", block_width},
+                       {"block_depth_m", -block_bottom},
+                       {"particles", fitted ? "body_fitted" : "lattice"},
+                       {"contact_spacing_m", fine},
+                       {"particles_across_half_width", a_ref / fine}};
 
   scene.analyse = [=](const History&, const Simulation& s2) {
     nlohmann::json a;
     const Particles& q = s2.particles;
-    std::vector<double> xs(static_cast<std::size_t>(bx)), ps(static_cast<std::size_t>(bx), 0.0);
-    for (long k = 0; k < bx; ++k) xs[static_cast<std::size_t>(k)] = x_left + (k + 0.5) * dx;
+    std::vector<double> ps(xs.size(), 0.0);
     double total = 0.0;
     for (std::size_t n = 0; n < surface.size(); ++n) {
       const std::size_t i = surface[n];
-      const double f = -q.mass[i] * q.contact_ay[i];      // downward push on the block
-      ps[static_cast<std::size_t>(column[n])] += f / dx;  // pressure over the column's width
+      const double f = -q.mass[i] * q.contact_ay[i];  // downward push on the block
+      const auto col = static_cast<std::size_t>(column[n]);
+      ps[col] += f / widths[col];  // pressure over the column's (or particle's) width
       total += f;
     }
     const EllipseFit fit = fit_hertz(xs, ps, a_ref);

@@ -76,7 +76,7 @@ double tooth0_load_radius(const GearLayout& L, const Simulation& sim) {
 // Where the mesh's compliance sits in a static check, each part's
 // deflection along the contact normal per unit line load [um mm / N]:
 // the pinion (tooth and body to the held hub) at its contact point, the
-// contact (the pair law's overlap: near field and series spring), and the
+// contact (the pair law's overlap: near field within its stiffness bound), and the
 // rack (tooth and body) from its contact point to its mean displacement,
 // whose sum is the transmission error's 1/c'. Contact points are the
 // contact-force-weighted smoothed points of each body's loaded particles

@@ -41,7 +41,7 @@ struct Scene {
   // Surface smoothing of the contact (physics/contact_smoothing.hpp), in
   // spacings, when the job does not set /method/contact/smoothing_spacings:
   // a scene whose contact the particles resolve (hertz) sets 0.
-  double contact_smoothing_spacings = 3.0;
+  double contact_smoothing_spacings = 4.0;
   double default_dt_s = 0.0;  // 0: the automatic step (a fraction of the stable limit)
   std::vector<Outline> outlines;
   // What was modelled, for the summary (counts, dimensions, notes).
