@@ -173,13 +173,21 @@ void choose_openmp_wait(char** argv) {
 
 int main(int argc, char** argv) {
   choose_openmp_wait(argv);
-  // Arrays of 64 KiB and more (every column of a scene past 8,000
+  // Arrays of 1 MiB and more (every column of a scene past 130,000
   // particles) are mapped on their own and unmapped when freed. A server or
   // bench that runs scenes of many sizes then does not carve its heap into
   // holes: they raised a 1e6-particle plate's set-up peak from 930 to 1,105
   // bytes a particle. A fixed threshold also stops glibc raising it after
-  // the first such free (docs/speed-accuracy.md, ninth round).
-  mallopt(M_MMAP_THRESHOLD, static_cast<int>(gearsph::kStaggerFrom));
+  // the first such free (docs/speed-accuracy.md, ninth round). Not lower:
+  // at 64 KiB every compressed chunk HDF5 wrote mapped and unmapped zlib's
+  // 64 KiB buffers, 2,100 times in a 2,000-step plate with its 51 frames,
+  // and a quarter of that run went to the kernel (docs/speed-accuracy.md,
+  // "Outputs").
+  mallopt(M_MMAP_THRESHOLD, static_cast<int>(gearsph::kMapFrom));
+  // And the heap's top is kept, up to 64 MiB, not handed back at every free
+  // (with the threshold fixed, glibc trims above 128 KiB: 3,200 brk calls,
+  // 0.7 s of that plate's 2.7 s).
+  mallopt(M_TRIM_THRESHOLD, 64 << 20);
 #ifdef GEARSPH_WITH_RESULTS
   gearsph::results::register_outputs();
 #endif

@@ -16,15 +16,17 @@ namespace gearsph {
 
 inline constexpr std::size_t kCacheLine = 64;
 
-// Arrays of 64 KiB or more are mapped on their own, page-aligned (the
-// executable fixes glibc's mmap threshold there: apps/gearsph/main.cpp).
-// Every such array would start at the same offset in a page, so the i-th
+// Arrays of kMapFrom or more are mapped on their own, page-aligned (the
+// executable fixes glibc's mmap threshold there: apps/gearsph/main.cpp);
+// from the heap, arrays of 64 KiB and more are as likely to share a page
+// offset. Every such array would start at the same offset in a page, so the i-th
 // entries of the arrays one loop reads would fall in one set of the L1 and
 // L2 caches and evict each other: a 1e5-particle plate's step took 1.65x
 // as long. Each starts instead at its own multiple of a cache line past
 // the page, in a rotating order, at most 1/16 of its size further and at
 // most 64 KiB (the L2's set period here is 128 KiB).
 inline constexpr std::size_t kStaggerFrom = std::size_t{64} << 10;
+inline constexpr std::size_t kMapFrom = std::size_t{1} << 20;
 inline std::size_t stagger(std::size_t bytes) {
   static std::atomic<std::size_t> count{0};
   const std::size_t lines = std::min<std::size_t>(1024, bytes / 16 / kCacheLine);

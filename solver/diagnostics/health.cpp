@@ -155,7 +155,7 @@ void HealthMonitor::raise(const Simulation& sim, const std::string& detector, do
   throw HealthError(e);
 }
 
-void HealthMonitor::check(const Simulation& sim) {
+void HealthMonitor::check(const Simulation& sim, bool full) {
   const EnergyState e = energy(sim);
   const double mech = e.kinetic + e.elastic + e.contact;
   if (!started_) {
@@ -167,13 +167,16 @@ void HealthMonitor::check(const Simulation& sim) {
       measures_.energy_scale > 0.0 ? (e.total() - e0_) / measures_.energy_scale : 0.0;
   measures_.energy_growth = std::max(measures_.energy_growth, growth);
 
-  const Spacing sp = min_spacing(sim);
-  measures_.min_spacing_over_dx = std::min(measures_.min_spacing_over_dx, sp.over_dx);
+  // The pair loops (spacing, zig-zag) only on a full check.
+  const Spacing sp = full ? min_spacing(sim) : Spacing{};
+  if (full) measures_.min_spacing_over_dx = std::min(measures_.min_spacing_over_dx, sp.over_dx);
   const double pen = penetration_over_dx(sim);
   measures_.max_penetration_over_dx = std::max(measures_.max_penetration_over_dx, pen);
-  const double zz = zigzag_indicator(sim);
-  measures_.zigzag = std::max(measures_.zigzag, zz);
-  measures_.zigzag_final = zz;
+  const double zz = full ? zigzag_indicator(sim) : 0.0;
+  if (full) {
+    measures_.zigzag = std::max(measures_.zigzag, zz);
+    measures_.zigzag_final = zz;
+  }
 
   const HealthLimits& L = limits_;
   const double wf = L.warn_fraction;
