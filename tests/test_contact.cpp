@@ -266,7 +266,7 @@ TEST(Contact, SurfaceSmoothingIsAPartitionOfUnityThatFollowsRigidMotion) {
   }
   for (std::size_t i = 0; i < p.n; ++i) {
     if (st.smooth_rows[i] == st.smooth_rows[i + 1]) continue;
-    const physics::SmoothedPoint q = physics::smoothed_point(moved, st, i);
+    const SmoothedPoint q = physics::smoothed_point(moved, st, i);
     EXPECT_NEAR(q.x, moved.x[i], 1e-15) << i;
     EXPECT_NEAR(q.y, moved.y[i], 1e-15) << i;
     EXPECT_NEAR(q.vx, 1.5, 1e-13);

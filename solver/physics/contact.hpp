@@ -42,6 +42,13 @@ struct ContactConfig {
   bool near_field = true;
 };
 
+// A surface particle's smoothed position and velocity (contact_smoothing.hpp).
+struct SmoothedPoint {
+  double x = 0.0, y = 0.0, vx = 0.0, vy = 0.0;
+  double ox = 0.0, oy = 0.0;  // the turned offset from the weighted centroid
+  double c = 0.0, s = 0.0;    // C = sum W A.x, S = sum W A x x (the rotation's sums)
+};
+
 // What the contact did in the last step.
 struct ContactState {
   std::int64_t active_pairs = 0;
@@ -80,6 +87,9 @@ struct ContactState {
   // times dtheta/dC and dtheta/dS of its receivers' rotation
   // (contact_smoothing.hpp); add_contact_accelerations applies the couple.
   std::vector<double> couple_c, couple_s;
+  // Per candidate, this step: its smoothed point, found once before the
+  // pair loop (each candidate has several partners).
+  std::vector<SmoothedPoint> smoothed;
 };
 
 namespace physics {
@@ -146,11 +156,6 @@ bool contact_smoothing(const Simulation& sim);
 // Smoothed position and velocity of surface particle i (contact_smoothing.hpp):
 // the offset turned by its receivers' best-fit rotation. Needs the tables
 // prepare_contact builds.
-struct SmoothedPoint {
-  double x, y, vx, vy;
-  double ox = 0.0, oy = 0.0;  // the turned offset from the weighted centroid
-  double c = 0.0, s = 0.0;    // C = sum W A.x, S = sum W A x x (the rotation's sums)
-};
 SmoothedPoint smoothed_point(const Particles& p, const ContactState& st, std::size_t i);
 // The totals of all threads into sim.contact_state and the energy ledger.
 void record_contact(Simulation& sim, const ContactTally& tally);
