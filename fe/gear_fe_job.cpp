@@ -7,6 +7,7 @@
 
 #include "solver/gear/gear_rating.hpp"
 #include "solver/job/job.hpp"
+#include "solver/scene/rack_pinion.hpp"
 
 namespace gearsph::fe {
 
@@ -69,7 +70,7 @@ GearFeJob read_gear_fe_job(const nlohmann::json& job) {
   c.rack_nu = rm.at("nu").get<double>();
   c.face_width_m = 1e-3 * pj.at("face_width_mm").get<double>();
   // Held where the scene's hub ring begins (rack_pinion.cpp: r_drive).
-  out.rim_depth_m = 1e-3 * pj.at("rim_depth_mm").get<double>();
+  out.rim_depth_m = scenes::pinion_rim_depth_m(pj);
   c.fixed_radius_m = pinion->root_radius() - out.rim_depth_m;
   if (!(c.fixed_radius_m > 0.0)) {
     refuse("/scene/pinion/rim_depth_mm", "the rim reaches the pinion centre");

@@ -209,6 +209,11 @@ void add_gear_histories(Scene& scene, const GearLayout& L, const std::vector<int
 
 }  // namespace
 
+double pinion_rim_depth_m(const nlohmann::json& pinion) {
+  if (pinion.contains("rim_depth_mm")) return 1e-3 * pinion.at("rim_depth_mm").get<double>();
+  return 1e-3 * pinion.at("module_mm").get<double>();
+}
+
 Scene build_rack_pinion(const SceneInput& in) {
   const nlohmann::json& s = in.scene;
   const nlohmann::json& pj = s.at("pinion");
@@ -333,7 +338,12 @@ Scene build_rack_pinion(const SceneInput& in) {
   geometry::RackSpec rs;
   rs.profile = tool;
   rs.teeth = m_max - m_min + 1;
-  rs.back_thickness_m = 1e-3 * rj.at("back_thickness_mm").get<double>();
+  // Two modules unless given: the rack's body, like the pinion's rim,
+  // follows the teeth (a fixed 8 mm made a module-3 rack's share of the mesh
+  // compliance 40 % larger than a module-4 one's).
+  rs.back_thickness_m = rj.contains("back_thickness_mm")
+                            ? 1e-3 * rj.at("back_thickness_mm").get<double>()
+                            : 2.0 * L.module_m;
   rs.backlash_m = 1e-3 * rj.at("backlash_mm").get<double>();
   std::optional<geometry::RackGeometry> rack_opt;
   try {
@@ -383,7 +393,7 @@ Scene build_rack_pinion(const SceneInput& in) {
   L.cx = 0.0;
   L.cy = 0.0;
 
-  const double rim_depth = 1e-3 * pj.at("rim_depth_mm").get<double>();
+  const double rim_depth = pinion_rim_depth_m(pj);
   const double r_drive = L.root_radius - rim_depth;  // inside: driven hub ring
   const double r_inner = whole_pinion ? std::max(0.0, r_drive - support) : r_drive - support;
   if (r_inner <= 0.0 && !whole_pinion) {

@@ -64,6 +64,12 @@ struct GearLayout {
 double velocity_stability_time(const std::vector<double>& t, const std::vector<double>& v,
                                double tolerance);
 
+// The deformable rim below the pinion's root circle [m] (scene.pinion):
+// rim_depth_mm, or one module. A fixed depth would hold a module-5 pinion's
+// sector closer to its teeth than a module-3 one's, and its mesh stiffness
+// with it (+34 % and -9 % against ISO where module 4 read +11 %).
+double pinion_rim_depth_m(const nlohmann::json& pinion);
+
 nlohmann::json analyse_rack_pinion(const GearLayout& layout, const History& h,
                                    const Simulation& final_state);
 
