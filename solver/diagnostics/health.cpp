@@ -156,7 +156,10 @@ void HealthMonitor::raise(const Simulation& sim, const std::string& detector, do
 }
 
 void HealthMonitor::check(const Simulation& sim, bool full) {
-  const EnergyState e = energy(sim);
+  check(sim, energy(sim), full);
+}
+
+void HealthMonitor::check(const Simulation& sim, const EnergyState& e, bool full) {
   const double mech = e.kinetic + e.elastic + e.contact;
   if (!started_) {
     e0_ = e.total();

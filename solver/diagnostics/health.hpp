@@ -108,6 +108,8 @@ class HealthMonitor {
   // detectors that loop over pairs (particle spacing, zig-zag); without it,
   // the energy and the contact's penetration only.
   void check(const Simulation& sim, bool full = true);
+  // The same with the energy already found (the history row has it).
+  void check(const Simulation& sim, const EnergyState& e, bool full);
   const HealthMeasures& measures() const { return measures_; }
   const std::vector<HealthEvent>& events() const { return events_; }
   // "ok", "warning" or "stopped".

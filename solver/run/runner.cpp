@@ -42,7 +42,9 @@ History make_history(const Scene& scene) {
   return History(cols);
 }
 
-void sample(const Scene& scene, History& history, std::vector<double>& row) {
+// One history row; returns the energy it found, which the health check
+// reads too.
+diagnostics::EnergyState sample(const Scene& scene, History& history, std::vector<double>& row) {
   const Simulation& sim = scene.sim;
   const diagnostics::EnergyState e = diagnostics::energy(sim);
   const diagnostics::Momentum m = diagnostics::momentum(sim);
@@ -66,6 +68,7 @@ void sample(const Scene& scene, History& history, std::vector<double>& row) {
   }
   for (const HistoryColumn& c : scene.columns) row.push_back(c.value(sim));
   history.add_row(row);
+  return e;
 }
 
 }  // namespace
@@ -120,12 +123,12 @@ RunResult run_job(PreparedJob& job, RunObserver* observer) {
       peak.update(sim);
       if (s % job.history_every == 0 || s == job.steps) {
         diagnostics::check_health(sim);
-        sample(scene, result.history, row);
+        const diagnostics::EnergyState e = sample(scene, result.history, row);
         // The energy at every sample, the detectors that loop over pairs at
         // most every kHealthEverySteps: a short run sampling every step
         // spent 7 % of its time in them (docs/speed-accuracy.md, "Outputs").
         const bool full = s - last_health >= kHealthEverySteps || s == job.steps;
-        health.check(sim, full);
+        health.check(sim, e, full);
         if (full) last_health = s;
         if (observer) observer->on_sample(sim, result.history);
       }
