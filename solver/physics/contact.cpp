@@ -237,7 +237,7 @@ void build_log_moments(Simulation& sim) {
 }  // namespace
 
 SmoothedPoint smoothed_point(const Particles& p, const ContactState& st, std::size_t i) {
-  SmoothedPoint s{0.0, 0.0, 0.0, 0.0};
+  SmoothedPoint s;
   // The receivers' rotation theta = atan2(S, C) from their reference
   // offsets A_k = X_k - sum W X (Procrustes): exact for a rigid motion, and
   // a function of the receivers' positions alone, so the spread force below

@@ -79,17 +79,11 @@ inline NearField near_field(double e_star, double k_i, double k_j, double lambda
 }
 
 namespace detail {
-// delta_nf(F) and its slope, held at the peak beyond F0 / e.
+// delta_nf(F) and its slope, for 0 < F <= F* (below its peak at F0 / e).
 inline void near_field_overlap(const NearField& nf, double f, double& delta, double& slope) {
-  const double knee = nf.f0 / 2.718281828459045;
   if (nf.f0 <= 0.0 || f <= 0.0) {
     delta = 0.0;
     slope = f <= 0.0 && nf.f0 > 0.0 ? 1e300 : 0.0;
-    return;
-  }
-  if (f >= knee) {
-    delta = nf.half_a * knee;
-    slope = 0.0;
     return;
   }
   const double l = std::log(nf.f0 / f);

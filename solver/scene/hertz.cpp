@@ -55,6 +55,20 @@ EllipseFit fit_hertz(const std::vector<double>& x, const std::vector<double>& p,
   return best;
 }
 
+// A row of particles along x (an outline row): sorted by x, and the stretch
+// of [lo, hi] each stands for, halfway to its neighbours.
+std::vector<double> sort_and_span(std::vector<std::size_t>& row, const Particles& p, double lo,
+                                  double hi) {
+  std::sort(row.begin(), row.end(), [&](std::size_t u, std::size_t v) { return p.x[u] < p.x[v]; });
+  std::vector<double> span(row.size());
+  for (std::size_t k = 0; k < row.size(); ++k) {
+    const double left = k == 0 ? lo : 0.5 * (p.x[row[k - 1]] + p.x[row[k]]);
+    const double right = k + 1 == row.size() ? hi : 0.5 * (p.x[row[k]] + p.x[row[k + 1]]);
+    span[k] = right - left;
+  }
+  return span;
+}
+
 }  // namespace
 
 Scene build_hertz(const SceneInput& in) {
@@ -186,18 +200,15 @@ Scene build_hertz(const SceneInput& in) {
   for (std::size_t i = cyl.begin; i < cyl.end; ++i) {
     if (p.y[i] > top - (fitted ? 1e-9 * R : 0.5 * dx)) top_row.push_back(i);
   }
-  std::sort(top_row.begin(), top_row.end(),
-            [&](std::size_t u, std::size_t v) { return p.x[u] < p.x[v]; });
-  const double chord_lo = p.x[top_row.front()], chord_hi = p.x[top_row.back()];
+  const auto [chord_lo, chord_hi] =
+      std::minmax_element(top_row.begin(), top_row.end(),
+                          [&](std::size_t u, std::size_t v) { return p.x[u] < p.x[v]; });
+  const double x_lo = p.x[*chord_lo], x_hi = p.x[*chord_hi];
+  const std::vector<double> span = sort_and_span(top_row, p, x_lo, x_hi);
   for (std::size_t k = 0; k < top_row.size(); ++k) {
-    const std::size_t i = top_row[k];
-    double share = 1.0 / static_cast<double>(top_row.size());
-    if (fitted) {
-      const double lo = k == 0 ? chord_lo : 0.5 * (p.x[top_row[k - 1]] + p.x[i]);
-      const double hi = k + 1 == top_row.size() ? chord_hi : 0.5 * (p.x[i] + p.x[top_row[k + 1]]);
-      share = (hi - lo) / (chord_hi - chord_lo);
-    }
-    p.load_ay[i] = -load * share / p.mass[i];
+    const double share =
+        fitted ? span[k] / (x_hi - x_lo) : 1.0 / static_cast<double>(top_row.size());
+    p.load_ay[top_row[k]] = -load * share / p.mass[top_row[k]];
   }
   sim.domain = grown_bounds(p, 2 * R);
 
@@ -227,15 +238,10 @@ Scene build_hertz(const SceneInput& in) {
     for (std::size_t i = blk.begin; i < blk.end; ++i) {
       if (p.y[i] > -1e-9 * R) surface.push_back(i);
     }
-    std::sort(surface.begin(), surface.end(),
-              [&](std::size_t u, std::size_t v) { return p.x[u] < p.x[v]; });
+    widths = sort_and_span(surface, p, x_left, -x_left);
     for (std::size_t k = 0; k < surface.size(); ++k) {
-      const double x = p.x[surface[k]];
-      const double lo = k == 0 ? x_left : 0.5 * (p.x[surface[k - 1]] + x);
-      const double hi = k + 1 == surface.size() ? -x_left : 0.5 * (x + p.x[surface[k + 1]]);
       column.push_back(static_cast<long>(k));
-      xs.push_back(x);
-      widths.push_back(hi - lo);
+      xs.push_back(p.x[surface[k]]);
     }
   } else {
     const long bx = std::lround(block_width / dx);
