@@ -35,7 +35,7 @@ int cmd_validate(Args& args) {
 
   nlohmann::json report = nlohmann::json::array();
   int failures = 0;
-  std::printf("%-34s %-8s %12s %12s %10s %10s %5s %9s %8s\n", "case", "section", "reference",
+  std::printf("%-36s %-8s %12s %12s %10s %10s %5s %9s %8s\n", "case", "section", "reference",
               "measured", "error", "tolerance", "pass", "particles", "wall_s");
   for (const validation::Case& c : validation::cases(quick)) {
     if (filter && c.id.find(*filter) == std::string::npos) continue;
@@ -56,7 +56,7 @@ int cmd_validate(Args& args) {
       std::snprintf(err, sizeof err, "%.3g", m.error);
       std::snprintf(tol, sizeof tol, "<= %.3g", c.tolerance);
     }
-    std::printf("%-34s %-8s %12.5g %12.5g %10s %10s %5s %9zu %8.2f\n", c.id.c_str(),
+    std::printf("%-36s %-8s %12.5g %12.5g %10s %10s %5s %9zu %8.2f\n", c.id.c_str(),
                 ("sec. " + c.section).c_str(), m.reference, m.measured, err, tol,
                 m.pass ? "yes" : (reported ? "(no)" : "NO"), job.scene.sim.particles.n,
                 result.wall_s);

@@ -3,7 +3,9 @@
 // 2 L / c, and separation with reversed velocities (c the bar wave speed,
 // here the plane-strain strip speed sqrt(E / (rho (1 - nu^2)))). With the
 // contact model "kernel" the bars are coupled through the SPH sums and stick
-// instead: the adhesion the paper's contact force avoids.
+// instead: the adhesion the paper's contact force avoids. Particles on a
+// lattice (the default) or body-fitted, optionally graded from a fine
+// spacing at the facing ends, where the contact is.
 #include <algorithm>
 #include <cmath>
 
@@ -35,29 +37,47 @@ Scene build_bar_impact(const SceneInput& in) {
   scene.type = "bar_impact";
   Simulation& sim = scene.sim;
   sim.discretization = in.discretization;
-  if (sim.discretization.dx <= 0) sim.discretization.dx = H / 10.0;
-  const double dx = sim.discretization.dx;
+  const bool fitted =
+      particle_layout(in.discretization, ParticleLayout::Lattice) == ParticleLayout::BodyFitted;
+  Discretization& d = sim.discretization;
+  if (d.dx <= 0) d.dx = H / 10.0;
+  const double dx = d.dx;
+  const double fine = fitted && d.fine_dx > 0 ? d.fine_dx : dx;
+  if (fine > dx) {
+    throw JobError("/discretization/fine_spacing_m",
+                   "the fine spacing must not exceed the bulk spacing");
+  }
   const long nx = lattice::cells(L, dx), ny = lattice::cells(H, dx);
   if (ny < 2)
     throw JobError("/discretization", "the spacing leaves fewer than 2 particles across a bar");
   if (nx < 4)
     throw JobError("/discretization", "the spacing leaves fewer than 4 particles along a bar");
-  const double length = nx * dx, thickness = ny * dx;
+  const double length = fitted ? L : nx * dx, thickness = fitted ? H : ny * dx;
   const double gap = s.at("gap_m").get<double>();
+  const double y0 = -0.5 * thickness, y1 = 0.5 * thickness;
 
   // Bar A on the left moving right, bar B on the right moving left; their
-  // faces touch (particles dx apart across the interface) when gap = 0.
-  add_body(sim, "bar_left", mat);
-  lattice::fill_rectangle(-length, -0.5 * thickness, nx, ny, dx,
-                          [&](double x, double y) { add_particle(sim, x, y, 0); });
-  end_body(sim);
-  add_body(sim, "bar_right", mat);
-  lattice::fill_rectangle(gap, -0.5 * thickness, nx, ny, dx,
-                          [&](double x, double y) { add_particle(sim, x, y, 0); });
-  end_body(sim);
+  // faces touch when gap = 0 (a lattice's particles are then dx apart
+  // across the interface, body-fitted ones stand on the faces).
+  auto bar = [&](const std::string& name, double x0) {
+    add_body(sim, name, mat);
+    if (fitted) {
+      geometry::SpacingField field(dx, d.grading > 0 ? d.grading : geometry::kDefaultGrading);
+      const double face = x0 < 0.0 ? 0.0 : gap;
+      if (fine < dx) field.add_feature({{face, y0}, {face, y1}}, fine);
+      add_body_fitted(
+          sim, geometry::make_region({{x0, y0}, {x0 + length, y0}, {x0 + length, y1}, {x0, y1}}),
+          field, [](double, double) { return 0; });
+    } else {
+      lattice::fill_rectangle(x0, y0, nx, ny, dx,
+                              [&](double x, double y) { add_particle(sim, x, y, 0); });
+    }
+    end_body(sim);
+  };
+  bar("bar_left", -length);
+  bar("bar_right", gap);
   Particles& p = sim.particles;
   for (std::size_t i = 0; i < p.n; ++i) p.vx[i] = p.body[i] == 0 ? v : -v;
-  const double y0 = -0.5 * thickness, y1 = 0.5 * thickness;
   scene.outlines.push_back(
       {"bar_left", 0, {{-length, y0}, {0.0, y0}, {0.0, y1}, {-length, y1}}, true});
   scene.outlines.push_back(
@@ -72,8 +92,10 @@ Scene build_bar_impact(const SceneInput& in) {
       {"left_vx_m_s", [](const Simulation& s2) { return body_velocity_x(s2, 0); }});
   scene.columns.push_back(
       {"right_vx_m_s", [](const Simulation& s2) { return body_velocity_x(s2, 1); }});
-  // Gap between the bars' facing surfaces (negative: overlap of particle cells).
-  scene.columns.push_back({"gap_m", [dx](const Simulation& s2) {
+  // Gap between the bars' facing surfaces (negative: overlap of particle
+  // cells; body-fitted particles stand on the faces).
+  const double cell = fitted ? 0.0 : dx;
+  scene.columns.push_back({"gap_m", [cell](const Simulation& s2) {
                              const Particles& q = s2.particles;
                              double right_of_left = -1e300, left_of_right = 1e300;
                              for (std::size_t i = 0; i < q.n; ++i) {
@@ -82,10 +104,13 @@ Scene build_bar_impact(const SceneInput& in) {
                                else
                                  left_of_right = std::min(left_of_right, q.x[i]);
                              }
-                             return left_of_right - right_of_left - dx;
+                             return left_of_right - right_of_left - cell;
                            }});
   scene.description = {{"length_m", length},
                        {"thickness_m", thickness},
+                       {"particles", fitted ? "body_fitted" : "lattice"},
+                       {"fine_spacing_m", fine},
+                       {"bulk_spacing_m", dx},
                        {"bar_wave_speed_m_s", c},
                        {"reference_contact_time_s", t_contact},
                        {"reference_contact_stress_Pa", sigma_ref}};

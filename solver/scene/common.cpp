@@ -57,8 +57,8 @@ ParticleLayout particle_layout(const Discretization& d, ParticleLayout scene_def
   const ParticleLayout l = d.layout == ParticleLayout::SceneDefault ? scene_default : d.layout;
   if (l == ParticleLayout::BodyFitted && !fitted_ok) {
     throw JobError("/discretization/particles",
-                   "this scene places its particles on a lattice only (its bodies are "
-                   "rectangles, which a lattice fits exactly)");
+                   "this scene places its particles on a lattice only (its grips are "
+                   "lattice rows)");
   }
   if (l == ParticleLayout::Lattice && (d.fine_dx > 0.0 || d.grading > 0.0)) {
     throw JobError("/discretization/particles",

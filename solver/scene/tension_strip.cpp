@@ -48,6 +48,7 @@ Scene build_tension_strip(const SceneInput& in) {
   scene.type = "tension_strip";
   Simulation& sim = scene.sim;
   sim.discretization = in.discretization;
+  particle_layout(in.discretization, ParticleLayout::Lattice, /*fitted_ok=*/false);
   if (sim.discretization.dx <= 0) sim.discretization.dx = H / 10.0;
   const double dx = sim.discretization.dx;
   const long nx = lattice::cells(L, dx), ny = lattice::cells(H, dx);

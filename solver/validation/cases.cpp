@@ -123,6 +123,17 @@ json bar_job(bool kernel_coupling, bool quick) {
   return job;
 }
 
+// A lattice job's graded twin: body-fitted particles, a quarter of the bulk
+// spacing at the scene's stress raiser (graded 4:1 in each body, at the
+// default rate), so the suite's references check the graded operator too.
+json graded(json job) {
+  job["name"] = job.at("name").get<std::string>() + "-graded";
+  const double dx = job.at("discretization").at("spacing_m").get<double>();
+  job["discretization"]["particles"] = "body_fitted";
+  job["discretization"]["fine_spacing_m"] = 0.25 * dx;
+  return job;
+}
+
 // Steel cylinder on a steel block, 2 MN/m: a = 0.48 mm, p0 = 2.6 GPa, six
 // spacings across a (docs/contact.md). The quick variant has a smaller block.
 json hertz_job(bool quick) {
@@ -217,6 +228,19 @@ std::vector<Case> cases(bool quick) {
                    disk_job(k, true, quick), bounded("max_stress_rotation_error", ""),
                    Case::Kind::Bound});
   }
+  // Graded twins of the lattice cases (the default kernel): the same
+  // references through body-fitted particles graded 4:1 (docs/validation.md).
+  out.push_back({"plate_period_graded/seed_quartic", "5", "period [s]",
+                 "thin plate; particles 4x finer at the clamp", 0.05,
+                 graded(plate_job("seed_quartic")), relative("period_s", "reference_period_s")});
+  out.push_back({"wave_speed_free_graded/seed_quartic", "2", "wave speed [m/s]",
+                 "c = sqrt(E / (rho (1 - nu^2))); particles 4x finer between the probes", 0.02,
+                 graded(strip_job("seed_quartic", "free", quick)),
+                 relative("wave_speed_m_s", "reference_speed_m_s")});
+  out.push_back({"disk_free_graded/seed_quartic", "4", "max von Mises / (rho omega^2 R^2)",
+                 "centrifugal stress scale; particles 4x finer at the centre", 0.5,
+                 graded(disk_job("seed_quartic", false, quick)),
+                 bounded("max_von_mises_Pa", "centrifugal_scale_Pa"), Case::Kind::Bound});
   out.push_back({"bar_impact/contact_stress", "3", "contact stress [Pa]", "sigma = rho c v", 0.05,
                  bar_job(false, quick),
                  relative("contact_stress_Pa", "reference_contact_stress_Pa")});
@@ -225,6 +249,14 @@ std::vector<Case> cases(bool quick) {
   out.push_back({"bar_impact/separates", "3", "bars separate after contact (1 yes)",
                  "elastic impact: the bars part at t_c", 0.0, bar_job(false, quick),
                  outcome("separated", true), Case::Kind::Outcome});
+  out.push_back({"bar_impact_graded/contact_stress", "3", "contact stress [Pa]",
+                 "sigma = rho c v; particles 4x finer at the facing ends", 0.05,
+                 graded(bar_job(false, quick)),
+                 relative("contact_stress_Pa", "reference_contact_stress_Pa")});
+  out.push_back({"bar_impact_graded/contact_time", "3", "contact time [s]",
+                 "t_c = 2 L / c; particles 4x finer at the facing ends", 0.05,
+                 graded(bar_job(false, quick)),
+                 relative("contact_time_s", "reference_contact_time_s")});
   out.push_back({"bar_impact_kernel/sticks", "3", "bars separate after contact (1 yes)",
                  "kernel coupling holds the bars together (adhesion)", 0.0, bar_job(true, quick),
                  outcome("separated", false), Case::Kind::Outcome});
