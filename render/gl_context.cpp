@@ -2,7 +2,8 @@
 
 #include <GL/osmesa.h>
 // osmesa.h includes GL/gl.h (fixed-function GL 1.x entry points, exported by
-// libOSMesa itself; no loader needed).
+// libOSMesa itself, loaded with it: gl() below).
+#include <dlfcn.h>
 
 #include <algorithm>
 #include <array>
@@ -11,11 +12,93 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "render/colormap.hpp"
 
 namespace gearsph::render {
 namespace {
+
+// OSMesa (and the GL 1.x entry points it exports) loaded when the first
+// picture is drawn, not when the program starts: it brings LLVM
+// (llvmpipe), whose half a million relocations cost every process start
+// 0.08 s, a run of a small job a sixth of its time (docs/speed-accuracy.md,
+// "Outputs"). The same library and functions as linking it.
+struct OsMesaApi {
+  decltype(&::OSMesaCreateContextAttribs) OSMesaCreateContextAttribs = nullptr;
+  decltype(&::OSMesaDestroyContext) OSMesaDestroyContext = nullptr;
+  decltype(&::OSMesaMakeCurrent) OSMesaMakeCurrent = nullptr;
+  decltype(&::OSMesaPixelStore) OSMesaPixelStore = nullptr;
+  decltype(&::glBindTexture) glBindTexture = nullptr;
+  decltype(&::glClear) glClear = nullptr;
+  decltype(&::glClearColor) glClearColor = nullptr;
+  decltype(&::glColorPointer) glColorPointer = nullptr;
+  decltype(&::glDeleteTextures) glDeleteTextures = nullptr;
+  decltype(&::glDisable) glDisable = nullptr;
+  decltype(&::glDisableClientState) glDisableClientState = nullptr;
+  decltype(&::glDrawArrays) glDrawArrays = nullptr;
+  decltype(&::glEnable) glEnable = nullptr;
+  decltype(&::glEnableClientState) glEnableClientState = nullptr;
+  decltype(&::glFinish) glFinish = nullptr;
+  decltype(&::glGenTextures) glGenTextures = nullptr;
+  decltype(&::glLoadIdentity) glLoadIdentity = nullptr;
+  decltype(&::glMatrixMode) glMatrixMode = nullptr;
+  decltype(&::glOrtho) glOrtho = nullptr;
+  decltype(&::glPixelStorei) glPixelStorei = nullptr;
+  decltype(&::glScissor) glScissor = nullptr;
+  decltype(&::glShadeModel) glShadeModel = nullptr;
+  decltype(&::glTexCoordPointer) glTexCoordPointer = nullptr;
+  decltype(&::glTexEnvi) glTexEnvi = nullptr;
+  decltype(&::glTexImage1D) glTexImage1D = nullptr;
+  decltype(&::glTexParameteri) glTexParameteri = nullptr;
+  decltype(&::glVertexPointer) glVertexPointer = nullptr;
+  decltype(&::glViewport) glViewport = nullptr;
+};
+
+const OsMesaApi& gl() {
+  static const OsMesaApi api = [] {
+    void* lib = dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_LOCAL);
+    if (lib == nullptr) {
+      throw std::runtime_error(std::string("OSMesa is not installed (Debian libosmesa6): ") +
+                               dlerror());
+    }
+    OsMesaApi a;
+    auto load = [lib](auto& fn, const char* name) {
+      fn = reinterpret_cast<std::remove_reference_t<decltype(fn)>>(dlsym(lib, name));
+      if (fn == nullptr) throw std::runtime_error(std::string("OSMesa lacks ") + name);
+    };
+    load(a.OSMesaCreateContextAttribs, "OSMesaCreateContextAttribs");
+    load(a.OSMesaDestroyContext, "OSMesaDestroyContext");
+    load(a.OSMesaMakeCurrent, "OSMesaMakeCurrent");
+    load(a.OSMesaPixelStore, "OSMesaPixelStore");
+    load(a.glBindTexture, "glBindTexture");
+    load(a.glClear, "glClear");
+    load(a.glClearColor, "glClearColor");
+    load(a.glColorPointer, "glColorPointer");
+    load(a.glDeleteTextures, "glDeleteTextures");
+    load(a.glDisable, "glDisable");
+    load(a.glDisableClientState, "glDisableClientState");
+    load(a.glDrawArrays, "glDrawArrays");
+    load(a.glEnable, "glEnable");
+    load(a.glEnableClientState, "glEnableClientState");
+    load(a.glFinish, "glFinish");
+    load(a.glGenTextures, "glGenTextures");
+    load(a.glLoadIdentity, "glLoadIdentity");
+    load(a.glMatrixMode, "glMatrixMode");
+    load(a.glOrtho, "glOrtho");
+    load(a.glPixelStorei, "glPixelStorei");
+    load(a.glScissor, "glScissor");
+    load(a.glShadeModel, "glShadeModel");
+    load(a.glTexCoordPointer, "glTexCoordPointer");
+    load(a.glTexEnvi, "glTexEnvi");
+    load(a.glTexImage1D, "glTexImage1D");
+    load(a.glTexParameteri, "glTexParameteri");
+    load(a.glVertexPointer, "glVertexPointer");
+    load(a.glViewport, "glViewport");
+    return a;  // the library stays loaded for the process's life
+  }();
+  return api;
+}
 
 // The per-thread context and the colour buffer it renders into.
 //
@@ -38,10 +121,10 @@ class GlContext {
       create();
     }
     buffer_.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4, 0);
-    if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, width, height))
+    if (!gl().OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, width, height))
       throw std::runtime_error("OSMesa: cannot bind a " + std::to_string(width) + "x" +
                                std::to_string(height) + " buffer");
-    OSMesaPixelStore(OSMESA_Y_UP, 0);  // buffer row 0 = top row, as in PNG
+    gl().OSMesaPixelStore(OSMESA_Y_UP, 0);  // buffer row 0 = top row, as in PNG
     bound_ = true;
     width_ = width;
     height_ = height;
@@ -65,14 +148,14 @@ class GlContext {
                               OSMESA_PROFILE,
                               OSMESA_COMPAT_PROFILE,
                               0};
-    context_ = OSMesaCreateContextAttribs(attributes, nullptr);
+    context_ = gl().OSMesaCreateContextAttribs(attributes, nullptr);
     if (context_ == nullptr) throw std::runtime_error("OSMesa: cannot create a GL context");
     bound_ = false;
   }
   void destroy() {
     const std::lock_guard lock(creation_mutex());
-    OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);  // release before destroying
-    OSMesaDestroyContext(context_);
+    gl().OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);  // release before destroying
+    gl().OSMesaDestroyContext(context_);
     context_ = nullptr;
   }
   static std::mutex& creation_mutex() {
@@ -142,23 +225,23 @@ GlCanvas::GlCanvas(int width, int height, int supersample)
   if (supersample_ < 1) throw std::invalid_argument("GlCanvas: image larger than 16384 px");
   thread_context().make_current(width * supersample_, height * supersample_);
   canvas_active = true;
-  glViewport(0, 0, width * supersample_, height * supersample_);
-  glMatrixMode(GL_PROJECTION);
-  glLoadIdentity();
-  glOrtho(0.0, width, height, 0.0, -1.0, 1.0);  // image pixels, y down
-  glMatrixMode(GL_MODELVIEW);
-  glLoadIdentity();
+  gl().glViewport(0, 0, width * supersample_, height * supersample_);
+  gl().glMatrixMode(GL_PROJECTION);
+  gl().glLoadIdentity();
+  gl().glOrtho(0.0, width, height, 0.0, -1.0, 1.0);  // image pixels, y down
+  gl().glMatrixMode(GL_MODELVIEW);
+  gl().glLoadIdentity();
   for (GLenum cap : {GL_DEPTH_TEST, GL_BLEND, GL_CULL_FACE, GL_DITHER, GL_LIGHTING, GL_TEXTURE_1D,
                      GL_TEXTURE_2D})
-    glDisable(cap);
-  glShadeModel(GL_FLAT);
+    gl().glDisable(cap);
+  gl().glShadeModel(GL_FLAT);
   clear_clip();
 }
 
 void GlCanvas::clear(Rgb8 colour) {
   flush();
-  glClearColor(colour.r / 255.0f, colour.g / 255.0f, colour.b / 255.0f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT);
+  gl().glClearColor(colour.r / 255.0f, colour.g / 255.0f, colour.b / 255.0f, 1.0f);
+  gl().glClear(GL_COLOR_BUFFER_BIT);
 }
 
 void GlCanvas::set_clip(const Rect& clip) {
@@ -166,13 +249,13 @@ void GlCanvas::set_clip(const Rect& clip) {
   const int s = supersample_;
   const auto x0 = static_cast<int>(std::floor(clip.x0)), x1 = static_cast<int>(std::ceil(clip.x1));
   const auto y0 = static_cast<int>(std::floor(clip.y0)), y1 = static_cast<int>(std::ceil(clip.y1));
-  glEnable(GL_SCISSOR_TEST);
-  glScissor(x0 * s, (height_ - y1) * s, (x1 - x0) * s, (y1 - y0) * s);  // GL: y up
+  gl().glEnable(GL_SCISSOR_TEST);
+  gl().glScissor(x0 * s, (height_ - y1) * s, (x1 - x0) * s, (y1 - y0) * s);  // GL: y up
 }
 
 void GlCanvas::clear_clip() {
   flush();
-  glDisable(GL_SCISSOR_TEST);
+  gl().glDisable(GL_SCISSOR_TEST);
 }
 
 void GlCanvas::push(Point p, Rgb8 c) {
@@ -214,26 +297,26 @@ void GlCanvas::fill_mapped_triangles(std::span<const Point> vertices, std::span<
     s.push_back(offset + scale * t[i]);
   }
   GLuint texture = 0;
-  glGenTextures(1, &texture);
-  glBindTexture(GL_TEXTURE_1D, texture);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage1D(GL_TEXTURE_1D, 0, GL_RGB8, texels, 0, GL_RGB, GL_UNSIGNED_BYTE, table.data());
+  gl().glGenTextures(1, &texture);
+  gl().glBindTexture(GL_TEXTURE_1D, texture);
+  gl().glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  gl().glTexImage1D(GL_TEXTURE_1D, 0, GL_RGB8, texels, 0, GL_RGB, GL_UNSIGNED_BYTE, table.data());
   const GLint filter = bands > 0 ? GL_NEAREST : GL_LINEAR;
-  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, filter);
-  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, filter);
-  glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
-  glEnable(GL_TEXTURE_1D);
-  glEnableClientState(GL_VERTEX_ARRAY);
-  glEnableClientState(GL_TEXTURE_COORD_ARRAY);
-  glVertexPointer(2, GL_FLOAT, 0, xy.data());
-  glTexCoordPointer(1, GL_FLOAT, 0, s.data());
-  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices.size()));
-  glDisableClientState(GL_TEXTURE_COORD_ARRAY);
-  glDisableClientState(GL_VERTEX_ARRAY);
-  glDisable(GL_TEXTURE_1D);
-  glBindTexture(GL_TEXTURE_1D, 0);
-  glDeleteTextures(1, &texture);
+  gl().glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, filter);
+  gl().glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, filter);
+  gl().glTexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  gl().glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+  gl().glEnable(GL_TEXTURE_1D);
+  gl().glEnableClientState(GL_VERTEX_ARRAY);
+  gl().glEnableClientState(GL_TEXTURE_COORD_ARRAY);
+  gl().glVertexPointer(2, GL_FLOAT, 0, xy.data());
+  gl().glTexCoordPointer(1, GL_FLOAT, 0, s.data());
+  gl().glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(vertices.size()));
+  gl().glDisableClientState(GL_TEXTURE_COORD_ARRAY);
+  gl().glDisableClientState(GL_VERTEX_ARRAY);
+  gl().glDisable(GL_TEXTURE_1D);
+  gl().glBindTexture(GL_TEXTURE_1D, 0);
+  gl().glDeleteTextures(1, &texture);
 }
 
 void GlCanvas::fill_rect(const Rect& r, Rgb8 colour) {
@@ -277,20 +360,20 @@ void GlCanvas::stroke(std::span<const Point> points, double width_px, Rgb8 colou
 
 void GlCanvas::flush() {
   if (xy_.empty()) return;
-  glEnableClientState(GL_VERTEX_ARRAY);
-  glEnableClientState(GL_COLOR_ARRAY);
-  glVertexPointer(2, GL_FLOAT, 0, xy_.data());
-  glColorPointer(3, GL_UNSIGNED_BYTE, 0, rgb_.data());
-  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(xy_.size() / 2));
-  glDisableClientState(GL_COLOR_ARRAY);
-  glDisableClientState(GL_VERTEX_ARRAY);
+  gl().glEnableClientState(GL_VERTEX_ARRAY);
+  gl().glEnableClientState(GL_COLOR_ARRAY);
+  gl().glVertexPointer(2, GL_FLOAT, 0, xy_.data());
+  gl().glColorPointer(3, GL_UNSIGNED_BYTE, 0, rgb_.data());
+  gl().glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(xy_.size() / 2));
+  gl().glDisableClientState(GL_COLOR_ARRAY);
+  gl().glDisableClientState(GL_VERTEX_ARRAY);
   xy_.clear();
   rgb_.clear();
 }
 
 RgbImage GlCanvas::resolve() {
   flush();
-  glFinish();
+  gl().glFinish();
   const int s = supersample_;
   const std::size_t stride = static_cast<std::size_t>(width_) * static_cast<std::size_t>(s) * 4;
   const std::uint8_t* buffer = thread_context().pixels();
