@@ -9,7 +9,8 @@ namespace gearsph::results {
 
 namespace {
 
-h5::Series field_series(hid_t group, const FieldSpec& f, std::size_t n, hsize_t frames) {
+h5::Series field_series(hid_t group, const FieldSpec& f, std::size_t n, hsize_t frames,
+                        bool compress) {
   const hsize_t chunk_n = std::min(n, FrameStore::kChunkParticles);
   h5::Series::Shape shape;
   shape.row = {n};
@@ -18,7 +19,7 @@ h5::Series field_series(hid_t group, const FieldSpec& f, std::size_t n, hsize_t 
     shape.row.push_back(3);
     shape.chunk.push_back(3);
   }
-  shape.compress = true;
+  shape.compress = compress;
   if (f.integer) {
     const std::int32_t fill = -1;
     return h5::Series(group, f.name, H5T_STD_I32LE, shape, frames, &fill);
@@ -48,10 +49,10 @@ std::uint64_t FrameStore::chunks_per_frame(std::size_t particles) {
   return (particles + kChunkParticles - 1) / kChunkParticles;
 }
 
-FrameStore::FrameStore(hid_t file, std::size_t particles, std::size_t frames)
+FrameStore::FrameStore(hid_t file, std::size_t particles, std::size_t frames, bool compress)
     : group_(h5::create_group(file, "frames")), values_(3 * particles), ints_(particles) {
   for (const FieldSpec& f : kFrameFields) {
-    fields_.push_back(field_series(group_.get(), f, particles, frames));
+    fields_.push_back(field_series(group_.get(), f, particles, frames, compress));
   }
   h5::Series::Shape marker;
   marker.chunk = {kMarkerChunkRows};

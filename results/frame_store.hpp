@@ -14,8 +14,10 @@ namespace gearsph::results {
 class FrameStore {
  public:
   FrameStore() = default;
-  // Allocates `frames` frames up front (h5_series.hpp).
-  FrameStore(hid_t file, std::size_t particles, std::size_t frames);
+  // Allocates `frames` frames up front (h5_series.hpp); `compress`: shuffle
+  // + deflate each chunk (1.4-1.8x smaller fields, but zlib took a quarter
+  // of a short run's time, docs/results.md).
+  FrameStore(hid_t file, std::size_t particles, std::size_t frames, bool compress);
 
   // Phase 1: appends every field of the current state.
   void write_fields(const Simulation& sim);

@@ -44,7 +44,7 @@ void ResultsWriter::on_start(const PreparedJob& job) {
   write_initial(file_.get(), sim.particles);
   write_scene_outlines(file_.get(), job.scene);
   const auto frames = static_cast<std::size_t>(std::max<std::int64_t>(job.frames, 0));
-  frames_ = FrameStore(file_.get(), sim.particles.n, frames);
+  frames_ = FrameStore(file_.get(), sim.particles.n, frames, job.compress_frames);
   planned_rows_ = planned_history_rows(job);
   xdmf_.emplace(dir_ / kXdmfFile, kResultsFile, sim.particles.n, frames);
 }

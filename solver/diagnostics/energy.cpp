@@ -8,27 +8,43 @@ EnergyState energy(const Simulation& sim) {
   const Particles& p = sim.particles;
   EnergyState e;
   const bool tl = sim.method.formulation == Formulation::TotalLagrangian;
-  for (std::size_t i = 0; i < p.n; ++i) {
-    e.kinetic += 0.5 * p.mass[i] * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i]);
-    const Material& mat = sim.material_of(i);
+  const double *m = p.mass.data(), *vx = p.vx.data(), *vy = p.vy.data();
+  // Body by body, the material's moduli hoisted: a loop the compiler
+  // vectorises (per particle, the material's look-up and the moduli's
+  // divisions were 7 % of a short run that samples every step).
+  for (const Body& b : sim.bodies) {
+    const Material& mat = b.material;
+    const double lambda = mat.lame_lambda(), mu = mat.shear_modulus();
+    const double inv_2k = 1.0 / (2.0 * mat.bulk_modulus()), inv_4g = 1.0 / (4.0 * mu);
+    double kinetic = 0.0, elastic = 0.0;
     if (tl) {
-      // Saint Venant-Kirchhoff: lambda/2 tr(E)^2 + mu E:E per reference volume.
-      const double fxx = p.fxx[i], fxy = p.fxy[i], fyx = p.fyx[i], fyy = p.fyy[i];
-      const double exx = 0.5 * (fxx * fxx + fyx * fyx - 1.0);
-      const double eyy = 0.5 * (fxy * fxy + fyy * fyy - 1.0);
-      const double exy = 0.5 * (fxx * fxy + fyx * fyy);
-      const double tr = exx + eyy;
-      const double w = 0.5 * mat.lame_lambda() * tr * tr +
-                       mat.shear_modulus() * (exx * exx + eyy * eyy + 2 * exy * exy);
-      e.elastic += w * p.mass[i] / p.rho0[i];
+      const double *Fxx = p.fxx.data(), *Fxy = p.fxy.data(), *Fyx = p.fyx.data();
+      const double *Fyy = p.fyy.data(), *rho0 = p.rho0.data();
+#pragma omp simd reduction(+ : kinetic, elastic)
+      for (std::size_t i = b.begin; i < b.end; ++i) {
+        kinetic += 0.5 * m[i] * (vx[i] * vx[i] + vy[i] * vy[i]);
+        // Saint Venant-Kirchhoff: lambda/2 tr(E)^2 + mu E:E per reference volume.
+        const double fxx = Fxx[i], fxy = Fxy[i], fyx = Fyx[i], fyy = Fyy[i];
+        const double exx = 0.5 * (fxx * fxx + fyx * fyx - 1.0);
+        const double eyy = 0.5 * (fxy * fxy + fyy * fyy - 1.0);
+        const double exy = 0.5 * (fxx * fxy + fyx * fyy);
+        const double tr = exx + eyy;
+        const double w = 0.5 * lambda * tr * tr + mu * (exx * exx + eyy * eyy + 2 * exy * exy);
+        elastic += w * m[i] / rho0[i];
+      }
     } else {
-      // Linear elastic energy density p^2/(2K) + S:S/(4G), current volume.
-      const double ss = p.sxx[i] * p.sxx[i] + p.syy[i] * p.syy[i] + p.szz[i] * p.szz[i] +
-                        2.0 * p.sxy[i] * p.sxy[i];
-      const double w =
-          p.p[i] * p.p[i] / (2.0 * mat.bulk_modulus()) + ss / (4.0 * mat.shear_modulus());
-      e.elastic += w * p.mass[i] / p.rho[i];
+#pragma omp simd reduction(+ : kinetic, elastic)
+      for (std::size_t i = b.begin; i < b.end; ++i) {
+        kinetic += 0.5 * m[i] * (vx[i] * vx[i] + vy[i] * vy[i]);
+        // Linear elastic energy density p^2/(2K) + S:S/(4G), current volume.
+        const double ss = p.sxx[i] * p.sxx[i] + p.syy[i] * p.syy[i] + p.szz[i] * p.szz[i] +
+                          2.0 * p.sxy[i] * p.sxy[i];
+        const double w = p.p[i] * p.p[i] * inv_2k + ss * inv_4g;
+        elastic += w * m[i] / p.rho[i];
+      }
     }
+    e.kinetic += kinetic;
+    e.elastic += elastic;
   }
   e.contact = sim.contact_state.stored_energy;
   e.dissipated = sim.energy.dissipated;

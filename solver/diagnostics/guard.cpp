@@ -1,5 +1,6 @@
 #include "solver/diagnostics/guard.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -34,6 +35,19 @@ bool find_non_finite(const Simulation& sim) {
       {"stress_zz", &p.szz},     {"pressure", &p.p},        {"density", &p.rho},
       {"acceleration_x", &p.ax}, {"acceleration_y", &p.ay}, {"velocity_x", &p.vx},
       {"velocity_y", &p.vy},     {"position_x", &p.x},      {"position_y", &p.y}};
+  // A vector scan first (v - v is 0 for a finite v and NaN otherwise): the
+  // look-up per particle and quantity below was 2 % of a short run that
+  // checks every step; it runs only to name what went wrong.
+  double any = 0.0, lowest_rho = 1.0;
+  for (const Quantity& q : quantities) {
+    const double* v = q.values->data();
+#pragma omp simd reduction(+ : any)
+    for (std::size_t i = 0; i < p.n; ++i) any += v[i] - v[i];
+  }
+  const double* rho = p.rho.data();
+#pragma omp simd reduction(min : lowest_rho)
+  for (std::size_t i = 0; i < p.n; ++i) lowest_rho = std::min(lowest_rho, rho[i]);
+  if (any == 0.0 && lowest_rho > 0.0) return false;
   for (std::size_t i = 0; i < p.n; ++i) {
     for (const Quantity& q : quantities) {
       const double v = (*q.values)[i];

@@ -285,6 +285,7 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads, int max_threads)
   };
   out.history_every = every(points);
   const auto frames = job.at("output").at("frames").get<std::int64_t>();
+  out.compress_frames = job.at("output").at("compress").get<bool>();
   if (frames > 0) {
     out.snapshot_every = every(frames);
     out.frames = 1 + out.steps / out.snapshot_every + (out.steps % out.snapshot_every ? 1 : 0);

@@ -42,6 +42,7 @@ struct PreparedJob {
   std::int64_t history_every = 1;
   std::int64_t snapshot_every = 0;  // 0: no snapshots
   std::int64_t frames = 0;          // snapshots the run will write (with frame 0 and the last)
+  bool compress_frames = false;     // output.compress: deflate the frames in results.h5
   // Who chose scene.sim.threads: "caller" (--threads), "job" (its "threads"),
   // "size" or "trial". For "trial", run_job times 1 to trial_threads threads
   // on a copy of the scene and runs on the fastest (run/thread_trial.hpp).
