@@ -26,8 +26,9 @@ std::string process_name() {
 void resolve_defaults(ServerConfig& config, int cores) {
   cores = std::max(1, cores);
   if (config.workers <= 0 && config.threads_per_job <= 0) {
-    config.workers = 1;
+    config.workers = cores;
     config.threads_per_job = cores;
+    config.core_budget = cores;
   } else if (config.workers <= 0) {
     config.workers = std::max(1, cores / config.threads_per_job);
   } else if (config.threads_per_job <= 0) {

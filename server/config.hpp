@@ -49,6 +49,7 @@ struct ServerConfig {
       gearsph_executable;   // --dispatch slurm: what the nodes run; "" for this one
   int workers = 0;          // jobs run at the same time; 0: chosen by resolve_defaults
   int threads_per_job = 0;  // OpenMP threads of each job; 0: chosen by resolve_defaults
+  int core_budget = 0;      // > 0: jobs share this many cores, threads chosen per job
   std::string token;        // non-empty: every request needs "Authorization: Bearer <token>"
   std::string cors_origin;  // non-empty: CORS for this origin ("*" for any)
   // Host header values answered besides localhost, 127.0.0.1, [::1] and the
@@ -79,9 +80,12 @@ bool shared_store(const ServerConfig& config);
 // "host:pid": names this process's claims in a shared store.
 std::string process_name();
 
-// Fills workers / threads_per_job so that workers x threads <= cores: by
-// default one job at a time with every core (a single large run finishes
-// soonest); with only one of the two given, the other divides the cores.
+// Fills workers / threads_per_job so that workers x threads <= cores. By
+// default the cores are a budget (core_budget) that jobs share: up to one
+// job per core, each taking the threads its size is worth while no other
+// job waits, one thread while others do (two paper-size jobs at once on two
+// cores; a lone large run still gets every core). With either given, the
+// fixed split: the other one divides the cores.
 void resolve_defaults(ServerConfig& config, int cores);
 
 // The token in a file: its first line without surrounding white space.

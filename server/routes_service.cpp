@@ -87,6 +87,7 @@ Response health(Services& s, Request&) {
                                           {"queue", s.queue_counts()},
                                           {"workers", s.config.workers},
                                           {"threads_per_job", s.config.threads_per_job},
+                                          {"core_budget", s.config.core_budget},
                                           {"running_here", s.workers.running()},
                                           {"connections", s.connections.load()},
                                           {"event_streams", s.hub.subscribers()},

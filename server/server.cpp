@@ -34,6 +34,7 @@ WorkerPoolOptions worker_options(const ServerConfig& c) {
   WorkerPoolOptions o;
   o.workers = c.local_workers ? c.workers : 0;
   o.threads_per_job = c.threads_per_job;
+  o.core_budget = c.core_budget;
   o.jobs_dir = results_dir_of(c);
   o.progress_interval = c.progress_interval;
   o.flush_interval = c.flush_interval;

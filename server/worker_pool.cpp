@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "server/documents.hpp"
+#include "solver/core/setup_progress.hpp"
 #include "solver/job/job.hpp"
 #include "solver/run/execute.hpp"
 
@@ -21,7 +22,18 @@ std::string fixed(double v, int digits) {
 nlohmann::json progress_document(const std::string& id, const Progress& p) {
   return {{"jobID", id},      {"status", "running"}, {"progress", percent(p.step, p.steps)},
           {"step", p.step},   {"steps", p.steps},    {"simulated_s", p.time_s},
-          {"end_s", p.end_s}, {"wall_s", p.wall_s},  {"eta_s", p.eta_s}};
+          {"end_s", p.end_s}, {"wall_s", p.wall_s},  {"eta_s", p.eta_s},
+          {"setup", nullptr}};  // the set-up is over (its events below)
+}
+
+// A set-up past a second (SetupProgressScope): what it is doing.
+nlohmann::json setup_document(const std::string& id, std::int64_t steps, const SetupStatus& s) {
+  return {{"jobID", id},
+          {"status", "running"},
+          {"progress", 0},
+          {"step", 0},
+          {"steps", steps},
+          {"setup", {{"stage", s.stage}, {"fraction", s.fraction}, {"elapsed_s", s.elapsed_s}}}};
 }
 
 }  // namespace
@@ -91,6 +103,7 @@ void WorkerPool::stop() {
     stopping_ = true;
   }
   wake_.notify_all();
+  core_freed_.notify_all();
   for (std::thread& t : threads_) {
     if (t.joinable()) t.join();
   }
@@ -127,11 +140,30 @@ int WorkerPool::running() const {
   return static_cast<int>(running_.size());
 }
 
+void WorkerPool::release_cores(int& held) {
+  if (held <= 0) return;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    cores_in_use_ -= held;
+  }
+  held = 0;
+  core_freed_.notify_all();
+}
+
 void WorkerPool::work() {
   while (!stopping_) {
     std::uint64_t seen = 0;
+    int held = 0;  // cores of the budget this worker holds
     {
-      std::lock_guard<std::mutex> lock(mutex_);
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (options_.core_budget > 0) {
+        // A job is claimed only with a core to run it on.
+        core_freed_.wait(lock,
+                         [&] { return stopping_.load() || cores_in_use_ < options_.core_budget; });
+        if (stopping_) return;
+        ++cores_in_use_;
+        held = 1;
+      }
       seen = generation_;
     }
     std::optional<JobRecord> job;
@@ -145,10 +177,11 @@ void WorkerPool::work() {
       if (stopping_) {
         store_.requeue(job->id, "re-queued: the server was stopping when this job was claimed",
                        options_.holder.worker);
+        release_cores(held);
         return;
       }
       try {
-        run(*job);
+        run(*job, held);
       } catch (const std::exception& e) {
         // The store failed while recording the outcome; the job stays
         // running in the store and is re-queued at the next start (or when
@@ -156,15 +189,36 @@ void WorkerPool::work() {
         std::fprintf(stderr, "%s: job %s: recording its outcome failed: %s\n",
                      options_.log_name.c_str(), job->id.c_str(), e.what());
       }
+      release_cores(held);
       continue;
     }
+    release_cores(held);
     std::unique_lock<std::mutex> lock(mutex_);
     wake_.wait_for(lock, options_.poll_interval,
                    [&] { return stopping_.load() || generation_ != seen; });
   }
 }
 
-void WorkerPool::run(const JobRecord& job) {
+int WorkerPool::offer_threads(int& held) {
+  if (options_.core_budget <= 0) return options_.threads_per_job;
+  // Others waiting: one thread each serves the queue soonest (N jobs in
+  // about N / cores job-times); alone, the job may take every free core.
+  bool others_waiting = true;
+  try {
+    const std::map<std::string, std::int64_t> counts = store_.count_by_status();
+    const auto queued = counts.find("accepted");
+    others_waiting = queued != counts.end() && queued->second > 0;
+  } catch (const std::exception&) {
+    // The store will say more when the job's outcome is recorded.
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  const int extra = others_waiting ? 0 : std::max(0, options_.core_budget - cores_in_use_);
+  cores_in_use_ += extra;
+  held += extra;
+  return std::max(1, std::min(options_.threads_per_job, held));
+}
+
+void WorkerPool::run(const JobRecord& job, int& held) {
   auto rj = std::make_shared<RunningJob>();
   rj->id = job.id;
   rj->progress.steps = job.steps;
@@ -200,8 +254,19 @@ void WorkerPool::run(const JobRecord& job) {
     // threads_per_job is this worker's share of the cores: a job's own
     // "threads" is kept below it, else a trial of a few steps picks up to it
     // (run/thread_trial.hpp).
-    PreparedJob prepared =
-        prepare_job(nlohmann::json::parse(job.job_json), 0, options_.threads_per_job);
+    const int offered = offer_threads(held);
+    PreparedJob prepared = [&] {
+      SetupProgressScope setup([&](const SetupStatus& s) {
+        hub_.publish(job.id, "progress", setup_document(job.id, job.steps, s).dump());
+      });
+      return prepare_job(nlohmann::json::parse(job.job_json), 0, offered);
+    }();
+    if (options_.core_budget > 0) {
+      // Hand back the cores the job is not worth (its size, or its trial's most).
+      int spare = held - std::max({1, prepared.scene.sim.threads, prepared.trial_threads});
+      held -= spare;
+      release_cores(spare);
+    }
     steps = prepared.steps;
     Observer observer(*this, *rj);
     ExecuteOptions eo;

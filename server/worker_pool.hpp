@@ -32,7 +32,12 @@ namespace gearsph::server {
 
 struct WorkerPoolOptions {
   int workers = 1;
-  int threads_per_job = 1;
+  int threads_per_job = 1;  // the most a job takes
+  // > 0: the workers share this many cores (ServerConfig::core_budget): a
+  // worker claims a job only when a core is free, and the job takes the
+  // threads it is worth (up to the free cores) when no other job waits,
+  // one thread when others do.
+  int core_budget = 0;
   std::filesystem::path jobs_dir;  // each job runs in jobs_dir / id
   std::chrono::milliseconds progress_interval{250};
   std::chrono::milliseconds flush_interval{1000};
@@ -69,7 +74,15 @@ class WorkerPool : public Dispatcher {
   class Observer;
 
   void work();
-  void run(const JobRecord& job);
+  // Runs a claimed job on the cores `held` (core_budget mode: the first
+  // core, taken before the claim; the job may take more, and hands back
+  // what it is not worth).
+  void run(const JobRecord& job, int& held);
+  // The most threads the next job may take; in core_budget mode takes the
+  // free cores into `held` when no other job waits.
+  int offer_threads(int& held);
+  // Hands `held` cores back to the budget and sets it to 0.
+  void release_cores(int& held);
   void flush();
   void heartbeat();
   void reclaim();
@@ -84,6 +97,8 @@ class WorkerPool : public Dispatcher {
   std::condition_variable wake_;
   std::uint64_t generation_ = 0;  // bumped by notify()
   std::map<std::string, std::shared_ptr<RunningJob>> running_;
+  int cores_in_use_ = 0;  // core_budget mode: cores held by running jobs (mutex_)
+  std::condition_variable core_freed_;
   std::atomic<bool> stopping_{false};
   std::vector<std::thread> threads_;
   std::thread flusher_;

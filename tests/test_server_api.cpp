@@ -622,5 +622,48 @@ TEST(ServerSubmit, CliSubmitsWaitsAndDownloads) {
   EXPECT_NE(slurp(server.dir() / "bad.err").find("/scene/lenght_m"), std::string::npos);
 }
 
+// By default the cores are a budget the jobs share: a study of small jobs
+// runs one job per core, each on one thread while others wait (two
+// paper-size jobs at once on two cores), and every job completes.
+TEST(ServerScheduling, AStudysJobsShareTheCoresOneThreadEach) {
+  const int cores = static_cast<int>(std::thread::hardware_concurrency());
+  if (cores < 2) GTEST_SKIP() << "needs two cores";
+  ServerProcess server;
+  auto c = server.client();
+  const json health = c.get("/health").json();
+  EXPECT_EQ(health.at("core_budget").get<int>(), cores);
+  EXPECT_EQ(health.at("workers").get<int>(), cores);
+  // cores + 1 jobs of about two seconds each on one thread.
+  json lengths = json::array();
+  for (int k = 0; k <= cores; ++k) lengths.push_back(0.4 + 0.001 * k);
+  const json study = {{"name", "share"},
+                      {"base", tiny_job(0.4)},
+                      {"axes", {{{"pointer", "/time/end_s"}, {"values", lengths}}}}};
+  const ClientResponse r = c.post_json("/studies", study.dump());
+  ASSERT_EQ(r.status, 201u) << r.body;
+  const std::string id = r.json().at("studyID");
+  int most_running = 0;
+  json done;
+  const auto deadline = Clock::now() + std::chrono::seconds(120);
+  for (;;) {
+    most_running = std::max(most_running, c.get("/health").json().at("running_here").get<int>());
+    done = c.get("/studies/" + id).json();
+    if (done.at("status") != "running" && done.at("status") != "accepted") break;
+    ASSERT_LT(Clock::now(), deadline) << done.dump();
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_EQ(done.at("status"), "successful") << done.dump();
+  EXPECT_EQ(most_running, cores);  // all cores busy, never more jobs than cores
+  // The jobs claimed while others waited ran on one thread (the last one
+  // may have found a free core more).
+  const json& jobs = done.at("jobs");
+  ASSERT_EQ(jobs.size(), static_cast<std::size_t>(cores) + 1);
+  for (int k = 0; k < cores; ++k) {
+    const std::string job = jobs.at(k).at("jobID");
+    EXPECT_EQ(c.get("/jobs/" + job + "/files/summary.json").json().at("threads").get<int>(), 1)
+        << k;
+  }
+}
+
 }  // namespace
 }  // namespace gearsph::server::testing

@@ -1,4 +1,6 @@
 // gearsph run JOB.json --out DIR
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +14,7 @@
 #ifdef GEARSPH_WITH_FE
 #include "fe/external_program.hpp"
 #endif
+#include "solver/core/setup_progress.hpp"
 #include "solver/job/job.hpp"
 #include "solver/run/execute.hpp"
 
@@ -78,9 +81,20 @@ int cmd_run(Args& args) {
   }
   const auto setup_start = std::chrono::steady_clock::now();
   PreparedJob job;
+  // A set-up past a second says what it is doing (a relaxation of body-
+  // fitted particles, the pairs, the stable step), redrawn on a terminal.
+  const bool tty = isatty(2) != 0;
+  bool setup_said = false;
   try {
+    SetupProgressScope setup([&](const SetupStatus& s) {
+      if (quiet) return;
+      std::fprintf(stderr, "%sgearsph run: setting up: %s %3.0f %% (%.1f s)%s", tty ? "\r" : "",
+                   s.stage.c_str(), 100.0 * s.fraction, s.elapsed_s, tty ? "   " : "\n");
+      setup_said = true;
+    });
     job = prepare_job(parse_job_text(read_file(path)), threads);
   } catch (const InvalidJob& e) {
+    if (setup_said && tty) std::fputc('\n', stderr);
     std::fprintf(stderr, "gearsph run: %s is not a valid job:\n", path.c_str());
     for (const JobIssue& i : e.issues) {
       std::fprintf(stderr, "  %s: %s\n", i.pointer.empty() ? "(document)" : i.pointer.c_str(),
@@ -102,6 +116,7 @@ int cmd_run(Args& args) {
       return 5;
     }
   }
+  if (setup_said && tty) std::fputc('\n', stderr);
   std::filesystem::create_directories(*out);
   const Simulation& sim = job.scene.sim;
   if (!quiet) {

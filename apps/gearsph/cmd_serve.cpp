@@ -119,7 +119,7 @@ int cmd_serve(Args& args) {
 
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   server::resolve_defaults(c, cores);
-  if (c.workers * c.threads_per_job > cores) {
+  if (c.core_budget == 0 && c.workers * c.threads_per_job > cores) {
     std::fprintf(stderr,
                  "gearsph serve: warning: %d workers x %d threads = %d threads on %d cores; jobs "
                  "will compete for the cores\n",
@@ -139,6 +139,8 @@ int cmd_serve(Args& args) {
   const std::string runs =
       c.dispatch == "slurm"
           ? "jobs go to Slurm, " + std::to_string(c.threads_per_job) + " CPUs each"
+      : c.local_workers && c.core_budget > 0
+          ? "jobs share " + std::to_string(c.core_budget) + " cores, threads by each job's size"
       : c.local_workers ? std::to_string(c.workers) + (c.workers == 1 ? " worker" : " workers") +
                               " x " + std::to_string(c.threads_per_job) +
                               (c.threads_per_job == 1 ? " thread" : " threads")

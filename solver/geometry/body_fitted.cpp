@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "solver/core/setup_progress.hpp"
 #include "solver/geometry/voronoi_cells.hpp"
 
 namespace gearsph::geometry {
@@ -142,6 +143,7 @@ BodyFittedParticles fill_body_fitted(const Region& region, const SpacingField& s
     return 1.0 / (s * s * s * s);
   };
   for (int it = 0; it < options.max_iterations; ++it) {
+    setup_progress("relaxing particles", double(it) / options.max_iterations);
     const std::vector<ClippedVoronoi::Cell> cells = voronoi.cells(out.points, density);
     double largest = 0.0;
     for (std::size_t i = n_outline; i < n; ++i) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "solver/core/setup_progress.hpp"
 #include "solver/core/simulation.hpp"
 #include "solver/neighbours/row_chunks.hpp"
 #include "solver/physics/total_lagrangian.hpp"
@@ -69,6 +70,7 @@ double largest_eigenvalue(Simulation& sim, Apply&& apply) {
   const double* ay = sim.particles.ay.data();
   double lambda = 0.0;
   for (int it = 0; it < kIterations; ++it) {
+    setup_progress("finding the stable time step", double(it) / kIterations);
     const double norm_u = std::sqrt(squared_norm(ux, uy, block_sums, sim.threads));
     if (norm_u == 0.0) return 0.0;
 #pragma omp parallel for num_threads(sim.threads) schedule(static)

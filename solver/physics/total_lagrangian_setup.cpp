@@ -4,6 +4,7 @@
 #include <cmath>
 #include <type_traits>
 
+#include "solver/core/setup_progress.hpp"
 #include "solver/core/simulation.hpp"
 #include "solver/physics/kernel_correction.hpp"
 #include "solver/physics/total_lagrangian.hpp"
@@ -65,6 +66,7 @@ void keep_pairs_within(const Particles& p, const Column<double>& h, double suppo
 // particle are held only until the gradients are built, and so not at the
 // same time as those arrays (the set-up's peak of memory).
 void build_pairs(Simulation& sim, const ReferencePairs::Basis& basis) {
+  setup_progress("pairing particles", 0.0);
   Particles& p = sim.particles;
   ReferencePairs& rp = sim.reference;
   rp = ReferencePairs();  // what an earlier basis built, freed first

@@ -43,4 +43,8 @@ test("eta of a job by its status", () => {
   assert.equal(eta({ status: "running", step: 0, eta_s: 5 }), "estimating…");
   assert.equal(eta({ status: "running", step: 10, eta_s: null }), "estimating…");
   assert.equal(eta({ status: "running", step: 10, eta_s: 90 }), "1 min 30 s");
+  // A set-up past a second says what it does; the run's first steps replace it.
+  const setup = { stage: "relaxing particles", fraction: 0.4, elapsed_s: 1.3 };
+  assert.equal(eta({ status: "running", step: 0, setup }), "setting up: relaxing particles 40 %");
+  assert.equal(eta({ status: "running", step: 10, eta_s: 90, setup: null }), "1 min 30 s");
 });

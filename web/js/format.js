@@ -62,6 +62,9 @@ export function escapeId(s) {
 export function eta(job) {
   if (job.status === "accepted") return "queued";
   if (job.status !== "running") return "—";
+  if (job.setup && !(job.step > 0)) {
+    return `setting up: ${job.setup.stage} ${Math.round(100 * (job.setup.fraction ?? 0))} %`;
+  }
   if (!(job.step > 0) || job.eta_s === null || job.eta_s === undefined) return "estimating…";
   return duration(job.eta_s);
 }
