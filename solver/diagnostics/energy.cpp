@@ -1,6 +1,7 @@
 #include "solver/diagnostics/energy.hpp"
 
 #include "solver/core/simulation.hpp"
+#include "solver/physics/elastic_law.hpp"
 
 namespace gearsph::diagnostics {
 
@@ -23,23 +24,16 @@ EnergyState energy(const Simulation& sim) {
 #pragma omp simd reduction(+ : kinetic, elastic)
       for (std::size_t i = b.begin; i < b.end; ++i) {
         kinetic += 0.5 * m[i] * (vx[i] * vx[i] + vy[i] * vy[i]);
-        // Saint Venant-Kirchhoff: lambda/2 tr(E)^2 + mu E:E per reference volume.
-        const double fxx = Fxx[i], fxy = Fxy[i], fyx = Fyx[i], fyy = Fyy[i];
-        const double exx = 0.5 * (fxx * fxx + fyx * fyx - 1.0);
-        const double eyy = 0.5 * (fxy * fxy + fyy * fyy - 1.0);
-        const double exy = 0.5 * (fxx * fxy + fyx * fyy);
-        const double tr = exx + eyy;
-        const double w = 0.5 * lambda * tr * tr + mu * (exx * exx + eyy * eyy + 2 * exy * exy);
-        elastic += w * m[i] / rho0[i];
+        const physics::GreenLagrange strain =
+            physics::green_lagrange(Fxx[i], Fxy[i], Fyx[i], Fyy[i]);
+        elastic += physics::saint_venant_kirchhoff_energy(strain, lambda, mu) * m[i] / rho0[i];
       }
     } else {
 #pragma omp simd reduction(+ : kinetic, elastic)
       for (std::size_t i = b.begin; i < b.end; ++i) {
         kinetic += 0.5 * m[i] * (vx[i] * vx[i] + vy[i] * vy[i]);
-        // Linear elastic energy density p^2/(2K) + S:S/(4G), current volume.
-        const double ss = p.sxx[i] * p.sxx[i] + p.syy[i] * p.syy[i] + p.szz[i] * p.szz[i] +
-                          2.0 * p.sxy[i] * p.sxy[i];
-        const double w = p.p[i] * p.p[i] * inv_2k + ss * inv_4g;
+        const double w = physics::linear_elastic_energy(p.p[i], p.sxx[i], p.syy[i], p.szz[i],
+                                                        p.sxy[i], inv_2k, inv_4g);
         elastic += w * m[i] / p.rho[i];
       }
     }

@@ -7,6 +7,7 @@
 #include "solver/core/setup_progress.hpp"
 #include "solver/core/simulation.hpp"
 #include "solver/neighbours/row_chunks.hpp"
+#include "solver/physics/artificial_viscosity.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 
 namespace gearsph {
@@ -236,8 +237,9 @@ StabilityLimit estimate_stability_limit(Simulation& sim) {
                   // Graded particles: the pair's h_ij (total_lagrangian.hpp).
                   const double hij = rp.hp.empty() ? h : 0.5 * (rp.hp[i] + rp.hp[j]);
                   const double e2 = rp.hp.empty() ? eta2 : std::pow(av.eta_over_h * hij, 2);
-                  const double coef = av.alpha * 0.5 * (p.cs[i] + p.cs[j]) * hij /
-                                      ((r2 + e2) * 0.5 * (p.rho0[i] + p.rho0[j]));
+                  const double coef =
+                      physics::monaghan_linear(av.alpha, 0.5 * (p.cs[i] + p.cs[j]), hij, r2 + e2,
+                                               0.5 * (p.rho0[i] + p.rho0[j]));
                   const double g = rp.dw0[k] / r;  // grad_i W_ij = g (dx, dy)
                   const double sx = coef * vr * g * dx, sy = coef * vr * g * dy;
                   ax[i] -= p.mass[j] * sx;  // a = -D v with D positive semi-definite

@@ -9,6 +9,7 @@
 #include "solver/core/simulation.hpp"
 #include "solver/physics/artificial_viscosity.hpp"
 #include "solver/physics/contact.hpp"
+#include "solver/physics/elastic_law.hpp"
 
 namespace gearsph::physics {
 
@@ -190,15 +191,10 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
       Fxy[i] = fxy;
       Fyx[i] = fyx;
       Fyy[i] = fyy;
-      // Saint Venant-Kirchhoff, plane strain (E_zz = 0).
       const int b = body[i];
-      const double lam = lambda_body[b], mu = mu_body[b];
-      const double exx = 0.5 * (fxx * fxx + fyx * fyx - 1.0);
-      const double eyy = 0.5 * (fxy * fxy + fyy * fyy - 1.0);
-      const double exy = 0.5 * (fxx * fxy + fyx * fyy);
-      const double tr = exx + eyy;
-      const double sxx = lam * tr + 2 * mu * exx, syy = lam * tr + 2 * mu * eyy;
-      const double sxy = 2 * mu * exy, szz = lam * tr;
+      const SecondPiola s =
+          saint_venant_kirchhoff(green_lagrange(fxx, fxy, fyx, fyy), lambda_body[b], mu_body[b]);
+      const double sxx = s.xx, syy = s.yy, sxy = s.xy, szz = s.zz;
       // P = F S
       const double pxx = fxx * sxx + fxy * sxy, pxy = fxx * sxy + fxy * syy;
       const double pyx = fyx * sxx + fyy * sxy, pyy = fyx * sxy + fyy * syy;
@@ -252,24 +248,6 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
     }
   }
   rp.chunk_peaks[c] = {j2_max, peak};
-}
-
-// Monaghan's viscosity of one pair (artificial_viscosity.hpp) over one
-// denominator, without the neighbour's mass: Pi_ij dW/dr / r with
-// Pi = h v.x (beta h v.x - alpha c q) / (q^2 rho), q = r^2 + eta^2, so the
-// pair costs one square root and one division. Separating pairs (v.x >= 0)
-// are not damped. Symmetric in i and j. GCC branches around the division
-// for them. Where more pairs approach, and approaching and separating pairs
-// mix at random (the rotating pinion), a pair costs more: the division, and
-// the mispredictions. The chunks are cut with those pairs weighted
-// (planned_chunks). A branch-free form (min(v.x, 0) in the product) made
-// every pair pay the division: 10 % more time in this loop on one thread,
-// so the branch stays (docs/speed-accuracy.md).
-inline double viscosity_pair(double dw0, double h, double vr, double r2, double q, double alpha,
-                             double beta, double c_mean, double rho_mean) {
-  const double num = dw0 * h * vr * (beta * h * vr - alpha * c_mean * q);
-  const double all = num / (q * q * rho_mean * std::sqrt(r2));
-  return vr < 0.0 ? all : 0.0;
 }
 
 // The pair loop of the momentum equation, instantiated with and without
