@@ -158,8 +158,10 @@ RegionStep total_lagrangian_step(Simulation& sim, double dt) {
   std::exception_ptr failed;
   physics::ContactTally touched;
   KickPowers power;
-#pragma omp parallel num_threads(chunks.chunks()) reduction(+ : viscous, damped, touched, power)
-  {
+  // The passes, run by every thread of the region on its own sums (the
+  // reduction's copies).
+  auto region = [&](double& viscous_sum, double& damped_sum, physics::ContactTally& touched_sum,
+                    KickPowers& power_sum) {
     // v^{n+1/2}, x^{n+1}, u = x - X.
     Drift mine;
     for_my_chunks(chunks, [&](int c) {
@@ -193,18 +195,28 @@ RegionStep total_lagrangian_step(Simulation& sim, double dt) {
       for_my_chunks(tl.deformation, [&](int c) { physics::stress_from_deformation(sim, tl, c); });
 #pragma omp barrier
       // Contact (its own static split) and the momentum pair sums.
-      if (contact) physics::contact_pairs(sim, dt, touched);
-      for_my_chunks(chunks, [&](int c) { viscous += physics::momentum_sums(sim, tl, c); });
+      if (contact) physics::contact_pairs(sim, dt, touched_sum);
+      for_my_chunks(chunks, [&](int c) { viscous_sum += physics::momentum_sums(sim, tl, c); });
 #pragma omp barrier
       // Per particle: a^{n+1}, external accelerations, v^{n+1}.
       for_my_chunks(chunks, [&](int c) {
-        viscous += physics::accelerations(sim, tl, c);
-        damped += external_accelerations(sim.particles, chunks.begin(c), chunks.end(c), ramp,
-                                         damping, dt, contact && !spread);
+        viscous_sum += physics::accelerations(sim, tl, c);
+        damped_sum += external_accelerations(sim.particles, chunks.begin(c), chunks.end(c), ramp,
+                                             damping, dt, contact && !spread);
         if (spread) physics::add_contact_accelerations(sim, chunks.begin(c), chunks.end(c));
-        power += closing_kick_particles(sim, 0.5 * dt, chunks.begin(c), chunks.end(c));
+        power_sum += closing_kick_particles(sim, 0.5 * dt, chunks.begin(c), chunks.end(c));
       });
     }
+  };
+  if (chunks.chunks() == 1) {
+    // One thread: no region. libgomp wakes a team of one through the kernel
+    // at every barrier (a futex call each, ~7 a step: 7 % of a 1,250-
+    // particle plate's step on this machine); the barriers and the single
+    // block bind to no team here and cost nothing.
+    region(viscous, damped, touched, power);
+  } else {
+#pragma omp parallel num_threads(chunks.chunks()) reduction(+ : viscous, damped, touched, power)
+    region(viscous, damped, touched, power);
   }
   if (failed) std::rethrow_exception(failed);
   if (drift.outside > 0) return {drift, power};
