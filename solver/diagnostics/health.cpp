@@ -49,13 +49,16 @@ Spacing min_spacing(const Simulation& sim) {
   const Particles& p = sim.particles;
   Spacing s;
   // Against the pair's own spacing (graded particles; dx on a lattice).
+  // A pair is closer than the closest so far if r^2 < q2_min dx^2: a
+  // product, and the division only for the (few) pairs that are.
   double q2_min = 1e300;
+  const double *x = p.x.data(), *y = p.y.data(), *spacing = p.spacing.data();
   for_each_body_pair(sim, [&](std::size_t i, std::size_t j) {
-    const double ddx = p.x[i] - p.x[j], ddy = p.y[i] - p.y[j];
-    const double dx = 0.5 * (p.spacing[i] + p.spacing[j]);
-    const double q2 = (ddx * ddx + ddy * ddy) / (dx * dx);
-    if (q2 < q2_min) {
-      q2_min = q2;
+    const double ddx = x[i] - x[j], ddy = y[i] - y[j];
+    const double dx = 0.5 * (spacing[i] + spacing[j]);
+    const double r2 = ddx * ddx + ddy * ddy, dx2 = dx * dx;
+    if (r2 < q2_min * dx2) {
+      q2_min = r2 / dx2;
       s.particle = static_cast<long>(i);
     }
   });
@@ -91,7 +94,11 @@ double zigzag_indicator(const Simulation& sim) {
   // The in-plane stress tensor, component by component: signed fields stay
   // smooth through a neutral axis, where von Mises has a kink.
   constexpr int kComponents = 3;
-  std::vector<double> s(kComponents * p.n), sum(kComponents * p.n, 0.0), count(p.n, 0.0);
+  // Scratch kept between calls (every 10th step of a run): no allocation.
+  thread_local std::vector<double> s, sum, count;
+  s.resize(kComponents * p.n);
+  sum.assign(kComponents * p.n, 0.0);
+  count.assign(p.n, 0.0);
   for (std::size_t i = 0; i < p.n; ++i) {
     s[kComponents * i + 0] = p.sigma_xx(i);
     s[kComponents * i + 1] = p.sigma_yy(i);
@@ -99,9 +106,10 @@ double zigzag_indicator(const Simulation& sim) {
   }
   // Nearest neighbours: reference distance about one spacing (the pair's
   // own: graded particles; dx on a lattice).
+  const double *x0 = p.x0.data(), *y0 = p.y0.data(), *spacing = p.spacing.data();
   for_each_body_pair(sim, [&](std::size_t i, std::size_t j) {
-    const double ddx = p.x0[i] - p.x0[j], ddy = p.y0[i] - p.y0[j];
-    const double dx = 0.5 * (p.spacing[i] + p.spacing[j]);
+    const double ddx = x0[i] - x0[j], ddy = y0[i] - y0[j];
+    const double dx = 0.5 * (spacing[i] + spacing[j]);
     if (ddx * ddx + ddy * ddy > 1.5 * 1.5 * dx * dx) return;
     for (int c = 0; c < kComponents; ++c) {
       sum[kComponents * i + c] += s[kComponents * j + c];
