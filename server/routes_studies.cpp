@@ -1,7 +1,12 @@
 // Parameter studies: POST expands a sweep into jobs; GET follows them and,
 // once all are finished, tabulates their summaries (JSON or CSV).
+#include <atomic>
+#include <exception>
 #include <fstream>
+#include <mutex>
 #include <sstream>
+#include <thread>
+#include <variant>
 
 #include "server/problem.hpp"
 #include "server/routes.hpp"
@@ -148,14 +153,44 @@ Response create_study(Services& s, Request& req) {
                    : "study";
   study.spec_json = request.dump();
 
-  std::vector<NewJob> jobs;
   for (std::size_t i = 0; i < points.size(); ++i) {
     StudyPoint& point = points[i];
     if (!point.parameters.contains("/name")) {
       const std::string suffix = "-" + std::to_string(i + 1);
       point.job["name"] = study.name.substr(0, kMaxJobName - suffix.size()) + suffix;
     }
-    auto admitted = admit_job(s, point.job);
+  }
+  // Every job is checked (its scene built, its stable step found: about a
+  // second for the paper's case) before any is stored, on as many threads
+  // as there are cores: a 16-job study of the paper's case was submitted
+  // in 18 s on one.
+  std::vector<std::variant<NewJob, Refusal>> checked(points.size());
+  {
+    std::atomic<std::size_t> next{0};
+    std::exception_ptr failed;
+    std::mutex failed_mutex;
+    auto check = [&] {
+      for (std::size_t i = next++; i < points.size(); i = next++) {
+        try {
+          checked[i] = admit_job(s, points[i].job);
+        } catch (...) {
+          const std::lock_guard lock(failed_mutex);
+          if (!failed) failed = std::current_exception();
+        }
+      }
+    };
+    const std::size_t threads =
+        std::min<std::size_t>(points.size(), std::max(1u, std::thread::hardware_concurrency()));
+    std::vector<std::thread> helpers;
+    for (std::size_t t = 1; t < threads; ++t) helpers.emplace_back(check);
+    check();
+    for (std::thread& t : helpers) t.join();
+    if (failed) std::rethrow_exception(failed);
+  }
+  std::vector<NewJob> jobs;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    StudyPoint& point = points[i];
+    auto& admitted = checked[i];
     if (auto* refusal = std::get_if<Refusal>(&admitted)) {
       // Point each issue at the axis value that caused it, else into the base.
       Refusal r = *refusal;
