@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "solver/job/job.hpp"
+#include "tests/support/job_issues.hpp"
 
 namespace gearsph {
 namespace {
@@ -99,14 +100,7 @@ TEST(GradedScenes, TheFineSpacingSitsAtEachScenesStressRaiser) {
   EXPECT_GT(spacing_near(bar.scene.sim.particles, -0.04, 0.0), 0.95 * 0.001);  // far end
 }
 
-std::vector<JobIssue> issues_of(const json& job) {
-  try {
-    prepare_job(job, 1);
-  } catch (const InvalidJob& e) {
-    return e.issues;
-  }
-  return {};
-}
+using testing_support::issues_of;
 
 TEST(GradedScenes, ScenesWithoutBodyFittedParticlesRefuseThemByName) {
   const auto grips = issues_of(

@@ -12,20 +12,14 @@
 #include "solver/job/job.hpp"
 #include "solver/job/json_schema.hpp"
 #include "solver/run/runner.hpp"
+#include "tests/support/job_issues.hpp"
 
 namespace gearsph {
 namespace {
 
 using nlohmann::json;
 
-std::vector<JobIssue> issues_of(const json& job) {
-  try {
-    prepare_job(job, 1);
-  } catch (const InvalidJob& e) {
-    return e.issues;
-  }
-  return {};
-}
+using testing_support::issues_of;
 
 bool has_issue(const std::vector<JobIssue>& issues, const std::string& pointer,
                const std::string& phrase) {

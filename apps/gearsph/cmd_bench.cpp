@@ -347,8 +347,8 @@ int bench_main(Args& args) {
   const bool quick = args.flag("quick");
   const bool no_pysph = args.flag("no-pysph");
   const bool skip_full = args.flag("skip-full");
-  const bool skip_study = args.flag("skip-study");
-  const int study_jobs = args.integer("study-jobs", 16);
+  [[maybe_unused]] const bool skip_study = args.flag("skip-study");
+  [[maybe_unused]] const int study_jobs = args.integer("study-jobs", 16);
   const std::string out = args.option("out").value_or("bench");
   const std::string python = args.option("python").value_or("/usr/bin/python3");
   const auto script_opt = args.option("pysph-script");

@@ -37,16 +37,8 @@ Scene build_bar_impact(const SceneInput& in) {
   scene.type = "bar_impact";
   Simulation& sim = scene.sim;
   sim.discretization = in.discretization;
-  const bool fitted =
-      particle_layout(in.discretization, ParticleLayout::Lattice) == ParticleLayout::BodyFitted;
   Discretization& d = sim.discretization;
-  if (d.dx <= 0) d.dx = H / 10.0;
-  const double dx = d.dx;
-  const double fine = fitted && d.fine_dx > 0 ? d.fine_dx : dx;
-  if (fine > dx) {
-    throw JobError("/discretization/fine_spacing_m",
-                   "the fine spacing must not exceed the bulk spacing");
-  }
+  const auto [fitted, dx, fine] = lattice_scene_spacings(d, H / 10.0);
   const long nx = lattice::cells(L, dx), ny = lattice::cells(H, dx);
   if (ny < 2)
     throw JobError("/discretization", "the spacing leaves fewer than 2 particles across a bar");

@@ -46,6 +46,17 @@ Box grown_bounds(const Particles& p, double margin);
 // place body-fitted particles pass `fitted_ok` false and get a JobError.
 ParticleLayout particle_layout(const Discretization& d, ParticleLayout scene_default,
                                bool fitted_ok = true);
+// The spacings of a scene on a lattice by default whose body-fitted
+// particles are graded only when the job gives a fine spacing (plate,
+// strip, disk, bars): sets d.dx to `default_dx` when the job leaves it open,
+// and refuses a fine spacing above the bulk one.
+struct SceneSpacings {
+  bool fitted = false;
+  double dx = 0.0;    // lattice spacing, or the body-fitted bulk spacing
+  double fine = 0.0;  // body-fitted: at the scene's stress raiser (dx: uniform)
+};
+SceneSpacings lattice_scene_spacings(Discretization& d, double default_dx);
+
 // Fills `region` with body-fitted particles graded by `spacing` and adds
 // them to the last body (volume: the clipped Voronoi cell), marking the body
 // fitted; motion_of(x, y) gives each particle's motion index. Returns the

@@ -68,6 +68,19 @@ ParticleLayout particle_layout(const Discretization& d, ParticleLayout scene_def
   return l;
 }
 
+SceneSpacings lattice_scene_spacings(Discretization& d, double default_dx) {
+  SceneSpacings out;
+  out.fitted = particle_layout(d, ParticleLayout::Lattice) == ParticleLayout::BodyFitted;
+  if (d.dx <= 0) d.dx = default_dx;
+  out.dx = d.dx;
+  out.fine = out.fitted && d.fine_dx > 0 ? d.fine_dx : out.dx;
+  if (out.fine > out.dx) {
+    throw JobError("/discretization/fine_spacing_m",
+                   "the fine spacing must not exceed the bulk spacing");
+  }
+  return out;
+}
+
 int add_body_fitted(Simulation& sim, const geometry::Region& region,
                     const geometry::SpacingField& spacing,
                     const std::function<int(double, double)>& motion_of) {

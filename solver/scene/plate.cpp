@@ -44,18 +44,10 @@ Scene build_plate(const SceneInput& in) {
   scene.type = "plate";
   Simulation& sim = scene.sim;
   sim.discretization = in.discretization;
-  const bool fitted =
-      particle_layout(in.discretization, ParticleLayout::Lattice) == ParticleLayout::BodyFitted;
   Discretization& d = sim.discretization;
-  if (d.dx <= 0) d.dx = H / 10.0;
-  const double dx = d.dx;
   // Body-fitted particles may be graded toward the clamp's face, where the
   // bending moment and its gradient peak; the spacing grows toward the tip.
-  const double fine = fitted && d.fine_dx > 0 ? d.fine_dx : dx;
-  if (fine > dx) {
-    throw JobError("/discretization/fine_spacing_m",
-                   "the fine spacing must not exceed the bulk spacing");
-  }
+  const auto [fitted, dx, fine] = lattice_scene_spacings(d, H / 10.0);
 
   const long nx = lattice::cells(L, dx), ny = lattice::cells(H, dx);
   const long nc = lattice::cells(clamp, dx);

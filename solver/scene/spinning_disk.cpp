@@ -37,18 +37,10 @@ Scene build_spinning_disk(const SceneInput& in) {
   scene.type = "spinning_disk";
   Simulation& sim = scene.sim;
   sim.discretization = in.discretization;
-  const bool fitted =
-      particle_layout(in.discretization, ParticleLayout::Lattice) == ParticleLayout::BodyFitted;
   Discretization& d = sim.discretization;
-  if (d.dx <= 0) d.dx = R / 15.0;
-  const double dx = d.dx;
-  const double fine = fitted && d.fine_dx > 0 ? d.fine_dx : dx;
+  const auto [fitted, dx, fine] = lattice_scene_spacings(d, R / 15.0);
   if (R < 3 * dx)
     throw JobError("/scene/radius_m", "the disk must be at least 3 spacings in radius");
-  if (fine > dx) {
-    throw JobError("/discretization/fine_spacing_m",
-                   "the fine spacing must not exceed the bulk spacing");
-  }
 
   int motion = 0;
   if (driven) {

@@ -34,21 +34,13 @@ Scene build_strip_wave(const SceneInput& in) {
   scene.type = "strip_wave";
   Simulation& sim = scene.sim;
   sim.discretization = in.discretization;
-  const bool fitted =
-      particle_layout(in.discretization, ParticleLayout::Lattice) == ParticleLayout::BodyFitted;
   Discretization& d = sim.discretization;
-  if (d.dx <= 0) d.dx = L / 400.0;
-  const double dx = d.dx;
-  const double fine = fitted && d.fine_dx > 0 ? d.fine_dx : dx;
+  const auto [fitted, dx, fine] = lattice_scene_spacings(d, L / 400.0);
   const double w = s.contains("pulse_width_m") ? s.at("pulse_width_m").get<double>() : 0.04 * L;
   if (fitted && confined) {
     throw JobError("/discretization/particles",
                    "a confined strip is held by roller rows on its lattice; body-fitted "
                    "particles need \"lateral\": \"free\"");
-  }
-  if (fine > dx) {
-    throw JobError("/discretization/fine_spacing_m",
-                   "the fine spacing must not exceed the bulk spacing");
   }
 
   const long nx = lattice::cells(L, dx), ny = lattice::cells(H, dx);
