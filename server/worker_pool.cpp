@@ -94,7 +94,10 @@ void WorkerPool::notify() {
     std::lock_guard<std::mutex> lock(mutex_);
     ++generation_;
   }
-  wake_.notify_one();
+  // Every idle worker: a study queues many jobs at once, and a worker left
+  // asleep would start only at its next poll (2 s). Those that find nothing
+  // go back to sleep.
+  wake_.notify_all();
 }
 
 void WorkerPool::stop() {

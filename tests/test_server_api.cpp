@@ -633,11 +633,11 @@ TEST(ServerScheduling, AStudysJobsShareTheCoresOneThreadEach) {
   const json health = c.get("/health").json();
   EXPECT_EQ(health.at("core_budget").get<int>(), cores);
   EXPECT_EQ(health.at("workers").get<int>(), cores);
-  // cores + 1 jobs of about two seconds each on one thread.
+  // cores + 1 jobs of one to four seconds each on one thread.
   json lengths = json::array();
-  for (int k = 0; k <= cores; ++k) lengths.push_back(0.4 + 0.001 * k);
+  for (int k = 0; k <= cores; ++k) lengths.push_back(0.6 + 0.001 * k);
   const json study = {{"name", "share"},
-                      {"base", tiny_job(0.4)},
+                      {"base", tiny_job(0.6)},
                       {"axes", {{{"pointer", "/time/end_s"}, {"values", lengths}}}}};
   const ClientResponse r = c.post_json("/studies", study.dump());
   ASSERT_EQ(r.status, 201u) << r.body;
