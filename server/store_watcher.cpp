@@ -17,6 +17,15 @@ StoreWatcher::~StoreWatcher() {
 }
 
 void StoreWatcher::start() {
+  // Learn what is there before the server answers anyone: a first poll
+  // made later took changes of jobs submitted meanwhile for history, and a
+  // client already following such a job never heard its final status (its
+  // stream stayed open with keep-alives).
+  try {
+    poll(std::chrono::duration<double>(options_.interval).count() + 5.0);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "gearsph serve: watching the job store failed: %s\n", e.what());
+  }
   thread_ = std::thread([this] { loop(); });
 }
 
