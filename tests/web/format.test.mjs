@@ -1,6 +1,6 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { bytes, duration, eng, eta, int, sig } from "../../web/js/format.js";
+import { bytes, duration, eng, eta, int, serverIdentity, sig } from "../../web/js/format.js";
 
 test("eng picks the prefix that keeps three figures readable", () => {
   assert.equal(eng(2.75e8, "Pa"), "275 MPa");
@@ -47,4 +47,13 @@ test("eta of a job by its status", () => {
   const setup = { stage: "relaxing particles", fraction: 0.4, elapsed_s: 1.3 };
   assert.equal(eta({ status: "running", step: 0, setup }), "setting up: relaxing particles 40 %");
   assert.equal(eta({ status: "running", step: 10, eta_s: 90, setup: null }), "1 min 30 s");
+});
+
+test("the server's identity: a shared core budget or a fixed split", () => {
+  assert.equal(serverIdentity({ version: "0.1.0", workers: 2, threads_per_job: 2, core_budget: 2 }),
+    "gearsph 0.1.0 · 2 cores shared by the jobs");
+  assert.equal(serverIdentity({ version: "0.1.0", workers: 2, threads_per_job: 1, core_budget: 0 }),
+    "gearsph 0.1.0 · 2 workers × 1 thread");
+  assert.equal(serverIdentity({ version: "0.1.0", workers: 1, threads_per_job: 4 }),
+    "gearsph 0.1.0 · 1 worker × 4 threads");
 });

@@ -3,6 +3,7 @@
 import { ensureSignedIn, get, onTokenNeeded } from "./api.js";
 import { compareView } from "./compare.js";
 import { events } from "./events.js";
+import { serverIdentity } from "./format.js";
 import { jobsView } from "./jobs.js";
 import { resultView } from "./result.js";
 import { submitView } from "./submit.js";
@@ -46,7 +47,7 @@ let identity = null; // null until /health answers, "" if it failed
 async function health() {
   try {
     const hl = await get("/health");
-    identity = `gearsph ${hl.version} · ${hl.workers} worker${hl.workers === 1 ? "" : "s"} × ${hl.threads_per_job} thread${hl.threads_per_job === 1 ? "" : "s"}`;
+    identity = serverIdentity(hl);
   } catch {
     identity = "";
   }

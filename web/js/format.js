@@ -68,3 +68,13 @@ export function eta(job) {
   if (!(job.step > 0) || job.eta_s === null || job.eta_s === undefined) return "estimating…";
   return duration(job.eta_s);
 }
+
+// The server as the header names it (GET /health): its version and how it
+// runs jobs, a core budget the jobs share or a fixed workers x threads.
+export function serverIdentity(hl) {
+  const plural = (n, word) => `${n} ${word}${n === 1 ? "" : "s"}`;
+  const runs = hl.core_budget > 0
+    ? `${plural(hl.core_budget, "core")} shared by the jobs`
+    : `${plural(hl.workers, "worker")} × ${plural(hl.threads_per_job, "thread")}`;
+  return `gearsph ${hl.version} · ${runs}`;
+}
