@@ -4,8 +4,8 @@
 // installs a sink for its thread (SetupProgressScope); the set-up's long
 // stages call setup_progress(), which reaches the sink only once the
 // set-up has taken a second (kSetupQuietS) and then at each new stage and
-// at most four times a second within one, so a quick set-up says nothing. A thread without a sink (an
-// OpenMP worker, a test) reports to nobody.
+// at most four times a second within one, so a quick set-up says nothing.
+// A thread without a sink (an OpenMP worker, a test) reports to nobody.
 #include <functional>
 #include <memory>
 #include <string>
