@@ -102,6 +102,7 @@ int cmd_run(Args& args) {
     }
     return 2;
   }
+  if (setup_said && tty) std::fputc('\n', stderr);  // end the redrawn line
   // A job that asks for the FE check learns before its run that it cannot
   // have it (the service answers 501).
   if (job.job.at("scene").value("fe_check", false)) {
@@ -116,7 +117,6 @@ int cmd_run(Args& args) {
       return 5;
     }
   }
-  if (setup_said && tty) std::fputc('\n', stderr);
   std::filesystem::create_directories(*out);
   const Simulation& sim = job.scene.sim;
   if (!quiet) {

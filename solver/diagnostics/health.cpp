@@ -94,11 +94,7 @@ double zigzag_indicator(const Simulation& sim) {
   // The in-plane stress tensor, component by component: signed fields stay
   // smooth through a neutral axis, where von Mises has a kink.
   constexpr int kComponents = 3;
-  // Scratch kept between calls (every 10th step of a run): no allocation.
-  thread_local std::vector<double> s, sum, count;
-  s.resize(kComponents * p.n);
-  sum.assign(kComponents * p.n, 0.0);
-  count.assign(p.n, 0.0);
+  std::vector<double> s(kComponents * p.n), sum(kComponents * p.n, 0.0), count(p.n, 0.0);
   for (std::size_t i = 0; i < p.n; ++i) {
     s[kComponents * i + 0] = p.sigma_xx(i);
     s[kComponents * i + 1] = p.sigma_yy(i);
