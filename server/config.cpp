@@ -1,5 +1,7 @@
 #include "server/config.hpp"
 
+#include "server/job_store.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,7 +22,10 @@ bool shared_store(const ServerConfig& config) {
 std::string process_name() {
   char host[256] = {};
   if (::gethostname(host, sizeof host - 1) != 0) std::snprintf(host, sizeof host, "localhost");
-  return std::string(host) + ":" + std::to_string(::getpid());
+  // The random part tells apart processes whose host name and pid agree
+  // (containers with host networking, each in its own PID namespace).
+  return std::string(host) + ":" + std::to_string(::getpid()) + ":" +
+         new_claim_token().substr(0, 8);
 }
 
 void resolve_defaults(ServerConfig& config, int cores) {

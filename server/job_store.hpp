@@ -11,7 +11,11 @@
 //
 // Who runs a job: a worker claims it and holds it under a lease that its
 // heartbeat renews (renew); a job whose lease ran out (the worker died or
-// lost the store) goes back to the queue (reclaim_expired). A worker with
+// lost the store) goes back to the queue (reclaim_expired). Each claim
+// draws a random token; renew, finish and requeue name it, so a holder
+// that lost its claim (frozen, cut off, or a namesake in another PID
+// namespace) can move the job no more. Until somebody claims the job
+// again, its last holder may still record the outcome of its run. A worker with
 // no lease (lease_s <= 0) is the single server's own pool, whose jobs are
 // recovered at its start-up (recover). A job handed to an outside
 // scheduler (Slurm) carries that scheduler's reference (dispatch_ref)
@@ -65,6 +69,7 @@ struct JobRecord {
   std::string message;
   std::string created, started, finished, updated;  // ISO 8601 UTC; "" if not yet
   std::string worker;                               // who claimed it last ("" if nobody)
+  std::string claim;         // the token of the last claim ("" if none): fences its holder
   std::string dispatch_ref;  // an outside scheduler's reference while tracked ("" if none)
 };
 
@@ -122,12 +127,21 @@ struct ProgressUpdate {
   int progress = 0;
 };
 
-// A claimant: "host:pid" of a worker process, or the server's own pool.
-// lease_s > 0: its claims expire unless renewed within that many seconds.
+// A claimant: "host:pid:random" of a worker process, or the server's own
+// pool. lease_s > 0: its claims expire unless renewed within that many
+// seconds.
 struct Holder {
   std::string worker = "local";
   double lease_s = 0.0;
 };
+
+// A job as its holder knows it: the id and the token of its claim.
+struct HeldJob {
+  std::string id, claim;
+};
+
+// A fresh claim token: 128 random bits as hex.
+std::string new_claim_token();
 
 struct Recovery {
   std::vector<std::string> requeued;  // interrupted runs that will start again
@@ -152,25 +166,29 @@ class JobStore {
   virtual std::map<std::string, std::int64_t> count_by_status() = 0;
 
   // Oldest accepted job (not handed to a scheduler) -> running, attempts + 1,
-  // held by `holder`; nullopt if none is queued. Two claimants never get the
-  // same job.
+  // held by `holder` under a new claim token (JobRecord::claim); nullopt if
+  // none is queued. Two claimants never get the same job.
   virtual std::optional<JobRecord> claim(const Holder& holder) = 0;
   std::optional<JobRecord> claim() { return claim(Holder{}); }
-  // Heartbeat: extends the lease of those `ids` that are still running and
-  // held by `holder`; returns the others (dismissed, or reclaimed after the
-  // lease ran out): their runs should stop.
+  // Heartbeat: extends the lease of the `held` jobs whose claim is still
+  // theirs: running, or queued again after the lease ran out while nobody
+  // has claimed them since (those run again under the same claim). Returns
+  // the ids of the others (dismissed, claimed by another, or ended): their
+  // runs should stop.
   virtual std::vector<std::string> renew(const Holder& holder,
-                                         const std::vector<std::string>& ids) = 0;
+                                         const std::vector<HeldJob>& held) = 0;
   // Running jobs whose lease ran out go back to the queue, or fail once they
   // were started max_attempts times.
   virtual Recovery reclaim_expired(int max_attempts) = 0;
   // Progress of running jobs, in one transaction. Returns the ids that are
   // no longer running (dismissed meanwhile): their runs should stop.
   virtual std::vector<std::string> save_progress(const std::vector<ProgressUpdate>& batch) = 0;
-  // running -> successful | failed; false if the job was not running (or,
-  // with a non-empty `worker`, is no longer held by that worker).
+  // running -> successful | failed; false if the job was not running. With
+  // a `claim` token: only while the job is that claim's, running or queued
+  // again with nobody having claimed it since (its lease ran out during a
+  // store outage; the run's result is still the only one).
   virtual bool finish(const std::string& id, JobStatus status, const std::string& message,
-                      const ProgressUpdate& last, const std::string& worker) = 0;
+                      const ProgressUpdate& last, const std::string& claim) = 0;
   bool finish(const std::string& id, JobStatus status, const std::string& message,
               const ProgressUpdate& last) {
     return finish(id, status, message, last, "");
@@ -178,9 +196,10 @@ class JobStore {
   // Records where a run dismissed while running stopped; false if the job is not dismissed.
   virtual bool close_dismissed(const std::string& id, const std::string& message,
                                const ProgressUpdate& last) = 0;
-  // running -> accepted without counting the attempt (the server is stopping).
+  // running -> accepted without counting the attempt (the server is
+  // stopping); with a `claim` token only while the claim is still that one.
   virtual bool requeue(const std::string& id, const std::string& message,
-                       const std::string& worker) = 0;
+                       const std::string& claim) = 0;
   bool requeue(const std::string& id, const std::string& message) {
     return requeue(id, message, "");
   }

@@ -4,6 +4,8 @@
 // one statement or one transaction, and each statement names the status it
 // moves a job from, so two processes never both move the same job.
 #include <algorithm>
+#include <cstdio>
+#include <random>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -53,7 +55,7 @@ sql::Value text(JobStatus s) {
 const char* const kJobColumns =
     "id, status, name, job_json, study_id, study_index, parameters_json, particles, steps, "
     "end_s, step, simulated_s, wall_s, eta_s, progress, attempts, message, created, started, "
-    "finished, updated, worker, dispatch_ref";
+    "finished, updated, worker, dispatch_ref, claim";
 const std::string kSelectJob = std::string("SELECT ") + kJobColumns + " FROM jobs";
 
 JobRecord read_job(const sql::Row& r) {
@@ -83,6 +85,7 @@ JobRecord read_job(const sql::Row& r) {
   j.updated = r.text(20);
   j.worker = r.text(21);
   j.dispatch_ref = r.text(22);
+  j.claim = r.text(23);
   return j;
 }
 
@@ -105,11 +108,17 @@ std::string placeholders(std::size_t n) {
   return s;
 }
 
-// " AND worker = ?" when a worker is named: only it may move its job.
-std::string held_by(const std::string& worker, sql::Values& params) {
-  if (worker.empty()) return "";
-  params.push_back(worker);
-  return " AND worker = ?";
+// A job its claim still holds: running, or queued again after its lease
+// ran out while nobody has claimed it since (a claim sets a new token).
+const char* const kStillClaimed =
+    "(status = 'running' OR (status = 'accepted' AND dispatch_ref IS NULL))";
+
+// The condition under which a job may be moved: by the holder of `claim`
+// while the claim is still its own; without a token, while it runs.
+std::string held_by(const std::string& claim, sql::Values& params) {
+  if (claim.empty()) return " AND status = 'running'";
+  params.push_back(claim);
+  return std::string(" AND claim = ? AND ") + kStillClaimed;
 }
 
 // Progress columns back to the start, for a run that starts (again).
@@ -215,30 +224,40 @@ class SqlJobStore : public JobStore {
         "message = 'running' || CASE WHEN attempts > 0 THEN ' (attempt ' || (attempts + 1) || "
         "')' ELSE '' END, started = " +
             now_ + ", updated = " + now_ + ", finished = NULL, " + kFromTheStart +
-            ", worker = ?, lease_until = CASE WHEN " + d_.seconds_param + " > 0 THEN " +
+            ", worker = ?, claim = ?, lease_until = CASE WHEN " + d_.seconds_param + " > 0 THEN " +
             d_.lease_in +
             " ELSE NULL END WHERE seq = (SELECT seq FROM jobs WHERE status = 'accepted' AND "
             "dispatch_ref IS NULL ORDER BY seq LIMIT 1" +
             d_.skip_locked + ") RETURNING " + kJobColumns,
-        {holder.worker, holder.lease_s, holder.lease_s});
+        {holder.worker, new_claim_token(), holder.lease_s, holder.lease_s});
     if (rows.empty()) return std::nullopt;
     return read_job(rows.front());
   }
 
-  std::vector<std::string> renew(const Holder& holder,
-                                 const std::vector<std::string>& ids) override {
-    if (ids.empty()) return {};
-    sql::Values params{holder.lease_s, holder.worker};
-    params.insert(params.end(), ids.begin(), ids.end());
-    const auto held =
-        ids_of(db_->connect()->query("UPDATE jobs SET lease_until = " + d_.lease_in +
-                                         " WHERE status = 'running' AND worker = ? AND id IN (" +
-                                         placeholders(ids.size()) + ") RETURNING id",
-                                     params));
-    const std::set<std::string> kept(held.begin(), held.end());
+  std::vector<std::string> renew(const Holder& holder, const std::vector<HeldJob>& held) override {
+    if (held.empty()) return {};
+    // A job queued again after its lease ran out, and not claimed since,
+    // runs on under the same claim (its holder was cut off, not gone).
+    sql::Values params{holder.lease_s};
+    std::string which;
+    for (const HeldJob& h : held) {
+      which += which.empty() ? "(id = ? AND claim = ?)" : " OR (id = ? AND claim = ?)";
+      params.push_back(h.id);
+      params.push_back(h.claim);
+    }
+    const auto kept_rows = db_->connect()->query(
+        "UPDATE jobs SET lease_until = " + d_.lease_in +
+            ", message = CASE WHEN status = 'accepted' THEN 'running (its worker is back after "
+            "its lease ran out; nobody had claimed it since)' ELSE message END, started = "
+            "COALESCE(started, " +
+            now_ + "), status = 'running' WHERE " + kStillClaimed + " AND (" + which +
+            ") RETURNING id",
+        params);
+    const std::vector<std::string> kept_ids = ids_of(kept_rows);
+    const std::set<std::string> kept(kept_ids.begin(), kept_ids.end());
     std::vector<std::string> lost;
-    for (const std::string& id : ids) {
-      if (!kept.count(id)) lost.push_back(id);
+    for (const HeldJob& h : held) {
+      if (!kept.count(h.id)) lost.push_back(h.id);
     }
     return lost;
   }
@@ -251,9 +270,10 @@ class SqlJobStore : public JobStore {
     auto db = db_->connect();
     sql::Transaction tx(*db);
     out.failed = ids_of(db->query(
-        "UPDATE jobs SET status = 'failed', eta_s = 0, lease_until = NULL, message = " + whose +
-            " || '; not started again after ' || " + kAttemptsWord + ", finished = " + now_ +
-            ", updated = " + now_ + expired + " AND attempts >= ? RETURNING id",
+        "UPDATE jobs SET status = 'failed', eta_s = 0, lease_until = NULL, claim = NULL, "
+        "message = " +
+            whose + " || '; not started again after ' || " + kAttemptsWord + ", finished = " +
+            now_ + ", updated = " + now_ + expired + " AND attempts >= ? RETURNING id",
         {std::int64_t{max_attempts}}));
     out.requeued = ids_of(db->query(
         "UPDATE jobs SET status = 'accepted', lease_until = NULL, message = 're-queued: ' || " +
@@ -281,7 +301,7 @@ class SqlJobStore : public JobStore {
   }
 
   bool finish(const std::string& id, JobStatus status, const std::string& message,
-              const ProgressUpdate& last, const std::string& worker) override {
+              const ProgressUpdate& last, const std::string& claim) override {
     sql::Values params{text(status),
                        message,
                        last.step,
@@ -289,11 +309,12 @@ class SqlJobStore : public JobStore {
                        last.wall_s,
                        std::int64_t{last.progress},
                        id};
-    const std::string held = held_by(worker, params);
+    const std::string held = held_by(claim, params);
     return db_->connect()->execute(
                "UPDATE jobs SET status = ?, message = ?, step = ?, simulated_s = ?, wall_s = ?, "
-               "eta_s = 0, progress = ?, lease_until = NULL, dispatch_ref = NULL, finished = " +
-                   now_ + ", updated = " + now_ + " WHERE id = ? AND status = 'running'" + held,
+               "eta_s = 0, progress = ?, lease_until = NULL, dispatch_ref = NULL, started = "
+               "COALESCE(started, " +
+                   now_ + "), finished = " + now_ + ", updated = " + now_ + " WHERE id = ?" + held,
                params) > 0;
   }
 
@@ -308,15 +329,19 @@ class SqlJobStore : public JobStore {
   }
 
   bool requeue(const std::string& id, const std::string& message,
-               const std::string& worker) override {
+               const std::string& claim) override {
     sql::Values params{message, id};
-    const std::string held = held_by(worker, params);
+    std::string held = " AND status = 'running'";
+    if (!claim.empty()) {
+      held += " AND claim = ?";
+      params.push_back(claim);
+    }
     return db_->connect()->execute(
                "UPDATE jobs SET status = 'accepted', "
                "attempts = CASE WHEN attempts > 0 THEN attempts - 1 ELSE 0 END, message = ?, "
                "started = NULL, " +
-                   std::string(kFromTheStart) + ", lease_until = NULL, updated = " + now_ +
-                   " WHERE id = ? AND status = 'running'" + held,
+                   std::string(kFromTheStart) +
+                   ", lease_until = NULL, claim = NULL, updated = " + now_ + " WHERE id = ?" + held,
                params) > 0;
   }
 
@@ -343,7 +368,8 @@ class SqlJobStore : public JobStore {
     auto db = db_->connect();
     sql::Transaction tx(*db);
     out.failed = ids_of(db->query(
-        "UPDATE jobs SET status = 'failed', eta_s = 0, message = 'interrupted ' || attempts || "
+        "UPDATE jobs SET status = 'failed', eta_s = 0, claim = NULL, message = 'interrupted ' "
+        "|| attempts || "
         "CASE WHEN attempts = 1 THEN ' time' ELSE ' times' END || ' (the server stopped while "
         "it ran); not started again after ' || " +
             std::string(kAttemptsWord) + ", finished = " + now_ + ", updated = " + now_ + own +
@@ -352,7 +378,7 @@ class SqlJobStore : public JobStore {
     out.requeued = ids_of(db->query(
         "UPDATE jobs SET status = 'accepted', message = 're-queued: the server stopped while "
         "attempt ' || attempts || ' ran; the job starts again from the beginning', "
-        "started = NULL, " +
+        "started = NULL, claim = NULL, " +
         std::string(kFromTheStart) + ", updated = " + now_ + own + " RETURNING id"));
     tx.commit();
     return out;
@@ -495,6 +521,18 @@ class SqlJobStore : public JobStore {
 
 std::unique_ptr<JobStore> open_sql_job_store(std::unique_ptr<sql::Database> db) {
   return std::make_unique<SqlJobStore>(std::move(db));
+}
+
+std::string new_claim_token() {
+  static thread_local std::mt19937_64 bits = [] {
+    std::random_device seed;
+    std::seed_seq seq{seed(), seed(), seed(), seed(), seed(), seed(), seed(), seed()};
+    return std::mt19937_64(seq);
+  }();
+  char text[33];
+  std::snprintf(text, sizeof text, "%016llx%016llx", static_cast<unsigned long long>(bits()),
+                static_cast<unsigned long long>(bits()));
+  return text;
 }
 
 bool is_postgres_uri(std::string_view s) {

@@ -78,7 +78,7 @@ Response files(Services& s, Request& req) {
   if (!record) return no_such_job(req);
   if (record->status == JobStatus::dismissed) return dismissed(req, *record);
   nlohmann::json list = nlohmann::json::array();
-  for (const FileEntry& f : list_files(s.job_dir(record->id))) {
+  for (const FileEntry& f : list_files(s.job_dir(*record))) {
     list.push_back({{"name", f.name},
                     {"bytes", f.bytes},
                     {"type", content_type_for(f.name)},
@@ -93,7 +93,7 @@ Response file(Services& s, Request& req) {
   if (record->status == JobStatus::dismissed) return dismissed(req, *record);
   const std::string& name = req.param("name");
   // Only a name the directory listing shows: no "..", no "/", no links.
-  const auto path = find_listed_file(s.job_dir(record->id), name);
+  const auto path = find_listed_file(s.job_dir(*record), name);
   if (!path) {
     return problem::plain(http::status::not_found,
                           "job " + record->id + " has no file named \"" + name + "\"", req.path);
@@ -192,7 +192,7 @@ Response image(Services& s, Request& req) {
     return res;
   };
   if (const auto cached = s.images.get(cache)) return answer(*cached);
-  ImageResult r = s.config.image_provider(s.job_dir(record->id), ir);
+  ImageResult r = s.config.image_provider(s.job_dir(*record), ir);
   if (r.status != 200) {
     const bool error_status = r.status >= 400 && r.status <= 599;
     return problem::plain(

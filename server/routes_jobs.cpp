@@ -402,7 +402,8 @@ Response dismiss_job(Services& s, Request& req) {
     // Finished, or dismissed before (files left by a run that was stopping,
     // or by a crash): the files go now.
     std::error_code ec;
-    std::filesystem::remove_all(s.job_dir(id), ec);
+    std::filesystem::remove_all(s.jobs_dir / id, ec);
+    discard_attempts(s.jobs_dir, id);
   }
   const auto record = s.store.job(id);
   if (!record) return no_such_job(req);
@@ -415,7 +416,7 @@ Response results(Services& s, Request& req) {
   const auto record = s.store.job(req.param("id"));
   if (!record) return no_such_job(req);
   const std::string& id = record->id;
-  const auto dir = s.job_dir(id);
+  const auto dir = s.job_dir(*record);
   const auto summary = read_json_file(dir / "summary.json");
 
   if (record->status == JobStatus::failed) {

@@ -108,7 +108,7 @@ StudyView view_study(Services& s, const StudyRecord& study) {
           }
         }
       }
-      if (auto summary = read_summary(s.job_dir(j.id) / "summary.json")) {
+      if (auto summary = read_summary(s.job_dir(j) / "summary.json")) {
         summary->erase("status");  // the job's status is the one that counts
         flatten_scalars(*summary, "", row);
       }

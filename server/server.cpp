@@ -1,5 +1,7 @@
 #include "server/server.hpp"
 
+#include "server/attempt_dirs.hpp"
+
 #include <fcntl.h>
 #include <sys/file.h>
 #include <unistd.h>
@@ -86,6 +88,7 @@ Server::Server(ServerConfig config)
     std::fprintf(stderr, "gearsph serve: job %s was interrupted; it is queued again\n", id.c_str());
   }
   for (const std::string& id : r.failed) {
+    discard_attempts(results_dir_of(config_), id);
     std::fprintf(stderr, "gearsph serve: job %s was interrupted %d times; it failed\n", id.c_str(),
                  config_.max_attempts);
   }
@@ -94,6 +97,7 @@ Server::Server(ServerConfig config)
     StoreWatcherOptions wo;
     wo.reclaim = shared_store(config_);
     wo.max_attempts = config_.max_attempts;
+    wo.jobs_dir = results_dir_of(config_);
     watcher_ = std::make_unique<StoreWatcher>(*store_, hub_, *workers_, wo);
   }
   services_ = std::make_unique<Services>(config_, *store_, *workers_, hub_);

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "server/attempt_dirs.hpp"
 #include "server/config.hpp"
 #include "server/dispatcher.hpp"
 #include "server/documents.hpp"
@@ -40,7 +41,8 @@ struct Services {
   std::atomic<bool> stopping{false};    // shutting down: no more keep-alive
   std::atomic<unsigned short> port{0};  // the port listened on (known once bound)
 
-  std::filesystem::path job_dir(const std::string& id) const { return jobs_dir / id; }
+  // The directory whose files are the job's (attempt_dirs.hpp).
+  std::filesystem::path job_dir(const JobRecord& job) const { return results_dir(jobs_dir, job); }
 
   // Jobs by status as /health shows them: refreshed every second off the
   // I/O threads, so a health check never waits for the store.

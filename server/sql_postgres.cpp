@@ -78,6 +78,12 @@ CREATE TABLE idempotency_keys (
 );
 )sql";
 
+// 2: a token per claim, which fences every later move of the job (worker
+// names can repeat: two containers' processes are both host:1).
+const char* const kMigration2 = R"sql(
+ALTER TABLE jobs ADD COLUMN claim TEXT;
+)sql";
+
 // ISO 8601 UTC with milliseconds, as SQLite's strftime writes them.
 #define GEARSPH_ISO(t) "to_char((" t ") AT TIME ZONE 'UTC', 'YYYY-MM-DD\"T\"HH24:MI:SS.MS\"Z\"')"
 
@@ -92,7 +98,7 @@ sql::Dialect postgres_dialect() {
       .skip_locked = " FOR UPDATE SKIP LOCKED",
       .lock_row = " FOR UPDATE",
       .migration_lock = "SELECT pg_advisory_xact_lock(7146301)",  // any fixed number
-      .migrations = {kMigration1},
+      .migrations = {kMigration1, kMigration2},
   };
 }
 

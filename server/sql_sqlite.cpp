@@ -69,6 +69,12 @@ ALTER TABLE jobs ADD COLUMN dispatch_ref TEXT;
 CREATE INDEX jobs_by_dispatch ON jobs(dispatch_ref) WHERE dispatch_ref IS NOT NULL;
 )sql";
 
+// 3: a token per claim, which fences every later move of the job (worker
+// names can repeat: two containers' processes are both host:1).
+const char* const kMigration3 = R"sql(
+ALTER TABLE jobs ADD COLUMN claim TEXT;
+)sql";
+
 // Seconds since 1970 on SQLite's clock: leases are REAL.
 #define GEARSPH_EPOCH "((julianday('now') - 2440587.5) * 86400.0)"
 
@@ -82,7 +88,7 @@ sql::Dialect sqlite_dialect() {
       .skip_locked = "",  // one writer at a time: the claim's UPDATE is atomic as it is
       .lock_row = "",     // BEGIN IMMEDIATE holds the write lock already
       .migration_lock = "",
-      .migrations = {kMigration1, kMigration2},
+      .migrations = {kMigration1, kMigration2, kMigration3},
   };
 }
 

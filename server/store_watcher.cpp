@@ -1,5 +1,7 @@
 #include "server/store_watcher.hpp"
 
+#include "server/attempt_dirs.hpp"
+
 #include <cstdio>
 #include <optional>
 #include <set>
@@ -61,6 +63,7 @@ void StoreWatcher::loop() {
                        id.c_str());
         }
         for (const std::string& id : r.failed) {
+          discard_attempts(options_.jobs_dir, id);
           std::fprintf(stderr,
                        "gearsph serve: job %s: its worker stopped renewing its lease; "
                        "it failed\n",

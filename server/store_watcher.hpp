@@ -24,6 +24,7 @@ struct StoreWatcherOptions {
   std::chrono::milliseconds interval{500};
   bool reclaim = false;  // also reclaim expired leases
   int max_attempts = 3;
+  std::filesystem::path jobs_dir;  // where a failed job's attempt directories are deleted
 };
 
 class StoreWatcher {

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "server/attempt_dirs.hpp"
 #include "server/documents.hpp"
 #include "solver/core/setup_progress.hpp"
 #include "solver/job/job.hpp"
@@ -40,6 +41,7 @@ nlohmann::json setup_document(const std::string& id, std::int64_t steps, const S
 
 struct WorkerPool::RunningJob {
   std::string id;
+  std::string claim;  // the claim's token: every store update of the run names it
   std::atomic<bool> dismissed{false};
   std::atomic<bool> lost{false};  // the store no longer has it running here
   std::mutex mutex;               // guards the fields below
@@ -179,7 +181,7 @@ void WorkerPool::work() {
     if (job) {
       if (stopping_) {
         store_.requeue(job->id, "re-queued: the server was stopping when this job was claimed",
-                       options_.holder.worker);
+                       job->claim);
         release_cores(held);
         return;
       }
@@ -224,6 +226,7 @@ int WorkerPool::offer_threads(int& held) {
 void WorkerPool::run(const JobRecord& job, int& held) {
   auto rj = std::make_shared<RunningJob>();
   rj->id = job.id;
+  rj->claim = job.claim;
   rj->progress.steps = job.steps;
   rj->progress.end_s = job.end_s;
   {
@@ -243,7 +246,9 @@ void WorkerPool::run(const JobRecord& job, int& held) {
                job.id.c_str(), job.name.c_str(), job.attempts);
   publish_status(job.id);
 
-  const std::filesystem::path dir = options_.jobs_dir / job.id;
+  // This claim's own directory: published as the job's only once its
+  // finish is recorded under this claim (attempt_dirs.hpp).
+  const std::filesystem::path dir = attempt_dir(options_.jobs_dir, job.id, job.claim);
   JobStatus outcome = JobStatus::failed;
   bool cancelled = false;
   std::string message;
@@ -251,7 +256,12 @@ void WorkerPool::run(const JobRecord& job, int& held) {
   last.id = job.id;
   std::int64_t steps = job.steps;
   try {
-    // A fresh directory: nothing of an interrupted attempt is mistaken for a result.
+    // Nothing of an earlier attempt is mistaken for a result: their
+    // directories go (a frozen holder's run then fails to write, and its
+    // finish is refused anyway), and so does anything published before the
+    // job was queued again.
+    discard_attempts(options_.jobs_dir, job.id, job.claim);
+    std::filesystem::remove_all(options_.jobs_dir / job.id);
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     // threads_per_job is this worker's share of the cores: a job's own
@@ -297,51 +307,77 @@ void WorkerPool::run(const JobRecord& job, int& held) {
   }
 
   const std::string where = "step " + std::to_string(last.step) + " of " + std::to_string(steps);
-  const std::string& worker = options_.holder.worker;
+  const char* log = options_.log_name.c_str();
+  bool published = false;
   auto record_outcome = [&] {
     if (cancelled && !rj->dismissed && !rj->lost && stopping_) {
       store_.requeue(job.id,
                      "re-queued: the server was stopped while this job ran (at " + where +
                          "); it starts again from the beginning when the server is back",
-                     worker);
+                     job.claim);
     } else if (cancelled) {
       if (!store_.close_dismissed(job.id, "dismissed while running; the run stopped at " + where,
                                   last) &&
           rj->lost) {
-        std::fprintf(stderr, "%s: job %s stopped at %s: its claim was lost (lease ran out)\n",
-                     options_.log_name.c_str(), job.id.c_str(), where.c_str());
+        std::fprintf(stderr,
+                     "%s: job %s stopped at %s: its claim was lost (its lease ran out and another "
+                     "worker claimed it, or it ended); this run's files were discarded\n",
+                     log, job.id.c_str(), where.c_str());
       }
-    } else if (!store_.finish(job.id, outcome, message, last, worker)) {
-      // Dismissed while its last steps ran.
-      store_.close_dismissed(
-          job.id,
-          "dismissed while running; the run had just " +
-              std::string(outcome == JobStatus::successful ? "completed" : "failed"),
-          last);
+    } else if (store_.finish(job.id, outcome, message, last, job.claim)) {
+      published = true;
+    } else if (!store_.close_dismissed(
+                   job.id,
+                   "dismissed while running; the run had just " +
+                       std::string(outcome == JobStatus::successful ? "completed" : "failed"),
+                   last)) {
+      std::fprintf(stderr,
+                   "%s: job %s: this run %s, but its claim was lost meanwhile (another worker "
+                   "claimed the job after the lease ran out); the other run's outcome stands and "
+                   "this run's files were discarded\n",
+                   log, job.id.c_str(), outcome == JobStatus::successful ? "completed" : "failed");
     }
   };
-  // A shared store may be restarting: keep trying for as long as the lease
-  // would hold, rather than lose a finished run.
-  const auto give_up = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                          std::chrono::duration<double>(options_.holder.lease_s));
-  for (;;) {
+  // A shared store may be down: a finished run is kept until its outcome is
+  // recorded, or until the store says another claim has the job (then
+  // finish is refused above). Only a stopping process gives up, and says so.
+  for (auto pause = std::chrono::milliseconds(250);;
+       pause = std::min(pause * 2, std::chrono::milliseconds(5000))) {
     try {
       record_outcome();
       break;
     } catch (const std::exception& e) {
-      if (options_.holder.lease_s <= 0 || Clock::now() >= give_up) throw;
-      std::fprintf(stderr, "%s: job %s: recording its outcome failed (%s); trying again\n",
-                   options_.log_name.c_str(), job.id.c_str(), e.what());
-      std::this_thread::sleep_for(std::chrono::milliseconds(500));
+      if (options_.holder.lease_s <= 0 || stopping_) {
+        std::fprintf(stderr,
+                     "%s: job %s: its outcome could not be recorded (%s); its files stay in %s "
+                     "and the job runs again once its lease has run out\n",
+                     log, job.id.c_str(), e.what(), dir.string().c_str());
+        throw;
+      }
+      std::fprintf(stderr, "%s: job %s: recording its outcome failed (%s); trying again\n", log,
+                   job.id.c_str(), e.what());
+      std::this_thread::sleep_for(pause);
     }
   }
-  const auto record = store_.job(job.id);
-  if (record && record->status == JobStatus::dismissed) {
-    // Dismissed while it ran: what the run wrote goes, now that it has stopped.
+  if (published) {
+    try {
+      publish_attempt(options_.jobs_dir, job.id, job.claim);
+    } catch (const std::exception& e) {
+      // Recorded but not renamed: the API publishes it when first asked.
+      std::fprintf(stderr, "%s: job %s: publishing its files failed: %s\n", log, job.id.c_str(),
+                   e.what());
+    }
+  } else {
     std::error_code ec;
     std::filesystem::remove_all(dir, ec);
   }
-  std::fprintf(stderr, "%s: job %s %s: %s\n", options_.log_name.c_str(), job.id.c_str(),
+  const auto record = store_.job(job.id);
+  if (record && record->status == JobStatus::dismissed) {
+    // Dismissed while it ran: whatever was published goes too.
+    std::error_code ec;
+    std::filesystem::remove_all(options_.jobs_dir / job.id, ec);
+  }
+  std::fprintf(stderr, "%s: job %s %s: %s\n", log, job.id.c_str(),
                record ? std::string(to_string(record->status)).c_str() : "?",
                record ? record->message.c_str() : "");
   publish_status(job.id);
@@ -378,30 +414,25 @@ void WorkerPool::flush() {
 
 void WorkerPool::heartbeat() {
   if (options_.holder.lease_s <= 0) return;
-  std::vector<std::string> ids;
+  std::vector<HeldJob> held;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    for (const auto& entry : running_) ids.push_back(entry.first);
+    for (const auto& [id, job] : running_) held.push_back({id, job->claim});
   }
-  const auto now = Clock::now();
   try {
-    const std::vector<std::string> lost = store_.renew(options_.holder, ids);
-    last_renewed_ = now;
+    const std::vector<std::string> lost = store_.renew(options_.holder, held);
     std::lock_guard<std::mutex> lock(mutex_);
     for (const std::string& id : lost) {
       const auto it = running_.find(id);
       if (it != running_.end()) it->second->lost = true;
     }
   } catch (const std::exception& e) {
+    // The runs go on: unrenewed for a whole lease, a claim may pass to
+    // another worker, but only the claim that holds at the finish publishes
+    // (attempt_dirs.hpp), and a run the store comes back to unclaimed keeps
+    // its work.
     std::fprintf(stderr, "%s: renewing the leases failed: %s\n", options_.log_name.c_str(),
                  e.what());
-    // Unrenewed for a whole lease, the claims may already belong to other
-    // workers: stop rather than run a job twice at the same time.
-    const auto silent = std::chrono::duration<double>(now - last_renewed_).count();
-    if (silent >= options_.holder.lease_s) {
-      std::lock_guard<std::mutex> lock(mutex_);
-      for (auto& entry : running_) entry.second->lost = true;
-    }
   }
 }
 
@@ -414,6 +445,7 @@ void WorkerPool::reclaim() {
     last_reclaim_ = now;
   }
   const Recovery r = store_.reclaim_expired(options_.max_attempts);
+  for (const std::string& id : r.failed) discard_attempts(options_.jobs_dir, id);
   for (const std::string& id : r.requeued) {
     std::fprintf(stderr, "%s: job %s: its worker stopped renewing its lease; it is queued again\n",
                  options_.log_name.c_str(), id.c_str());

@@ -105,7 +105,6 @@ class WorkerPool : public Dispatcher {
   std::mutex flush_mutex_;
   std::condition_variable flush_wake_;
   bool flusher_stop_ = false;
-  std::chrono::steady_clock::time_point last_renewed_ = std::chrono::steady_clock::now();
   std::chrono::steady_clock::time_point last_reclaim_{};
   std::mutex reclaim_mutex_;
 };

@@ -80,7 +80,9 @@ TEST_F(ScaleOutPostgres, StoreClaimsEachJobOnceAcrossConnections) {
   for (int t = 0; t < 4; ++t) {
     threads.emplace_back([&, t] {
       auto own = open_job_store(uri_);  // another connection, as another machine
-      while (auto job = own->claim(Holder{"w" + std::to_string(t), 60})) {
+      Holder holder{"w", 60};
+      holder.worker.push_back(static_cast<char>('0' + t));
+      while (auto job = own->claim(holder)) {
         std::lock_guard<std::mutex> lock(mutex);
         claimed.push_back(job->id);
       }
@@ -94,12 +96,14 @@ TEST_F(ScaleOutPostgres, StoreClaimsEachJobOnceAcrossConnections) {
   // Opening again finds the schema current and migrates nothing.
   open_job_store(uri_);
   PgDatabase db(uri_);
-  EXPECT_EQ(db.value("SELECT version FROM schema_version"), "1");
+  EXPECT_EQ(db.value("SELECT version FROM schema_version"), "2");
   EXPECT_EQ(db.value("SELECT COUNT(*) FROM schema_version"), "1");
 }
 
-// Leases on either store: renewed, expired and reclaimed, fenced off from
-// the holder that lost them, and reported lost when the job was dismissed.
+// Leases on either store: renewed, expired and reclaimed, fenced off by the
+// claim's token from the holder that lost them (even one of the same name:
+// two containers' workers are both host:1), still the holder's while
+// nobody claimed the job again, and reported lost when it was dismissed.
 void expect_leases_work(JobStore& store) {
   NewJob j;
   j.id = new_id();
@@ -107,43 +111,76 @@ void expect_leases_work(JobStore& store) {
   j.job_json = "{}";
   store.submit(j, std::nullopt);
   // a's lease is short enough to expire during the test, long enough that a
-  // busy machine does not let it expire between two statements.
-  const Holder a{"a", 1.5}, b{"b", 60};
+  // busy machine does not let it expire between two statements. b has the
+  // same name as a.
+  const Holder a{"vm:1", 1.5}, b{"vm:1", 60};
   const auto expire = [] { std::this_thread::sleep_for(std::chrono::milliseconds(2000)); };
-  ASSERT_TRUE(store.claim(a));
-  EXPECT_TRUE(store.renew(a, {j.id}).empty());
-  EXPECT_EQ(store.renew(b, {j.id}), std::vector<std::string>{j.id});  // not b's
-  EXPECT_TRUE(store.reclaim_expired(3).requeued.empty());             // just renewed
+  const ProgressUpdate done{j.id, 1, 1, 1, 0, 100};
+  const auto first = store.claim(a);
+  ASSERT_TRUE(first);
+  ASSERT_EQ(first->claim.size(), 32u);
+  EXPECT_TRUE(store.renew(a, {{j.id, first->claim}}).empty());
+  EXPECT_EQ(store.renew(b, {{j.id, "another claim"}}), std::vector<std::string>{j.id});
+  EXPECT_TRUE(store.reclaim_expired(3).requeued.empty());  // just renewed
   expire();
   EXPECT_EQ(store.reclaim_expired(3).requeued, std::vector<std::string>{j.id});
-  EXPECT_NE(store.job(j.id)->message.find("its worker a stopped renewing its lease"),
+  EXPECT_NE(store.job(j.id)->message.find("its worker vm:1 stopped renewing its lease"),
             std::string::npos)
       << store.job(j.id)->message;
   const auto again = store.claim(b);
   ASSERT_TRUE(again);
   EXPECT_EQ(again->attempts, 2);
-  EXPECT_EQ(again->worker, "b");
-  // The first holder is fenced off: it can neither renew nor finish.
-  EXPECT_EQ(store.renew(a, {j.id}), std::vector<std::string>{j.id});
-  EXPECT_FALSE(store.finish(j.id, JobStatus::successful, "done", {j.id, 1, 1, 1, 0, 100}, "a"));
-  EXPECT_FALSE(store.requeue(j.id, "stopping", "a"));
-  EXPECT_TRUE(store.finish(j.id, JobStatus::successful, "done", {j.id, 1, 1, 1, 0, 100}, "b"));
+  EXPECT_EQ(again->worker, "vm:1");
+  EXPECT_NE(again->claim, first->claim);
+  // The first holder is fenced off by its token, though its name is b's:
+  // it can neither renew, finish nor re-queue.
+  EXPECT_EQ(store.renew(a, {{j.id, first->claim}}), std::vector<std::string>{j.id});
+  EXPECT_FALSE(store.finish(j.id, JobStatus::successful, "done", done, first->claim));
+  EXPECT_FALSE(store.requeue(j.id, "stopping", first->claim));
+  EXPECT_EQ(store.job(j.id)->status, JobStatus::running);
+  EXPECT_TRUE(store.finish(j.id, JobStatus::successful, "done", done, again->claim));
   EXPECT_EQ(store.job(j.id)->status, JobStatus::successful);
+  EXPECT_FALSE(store.finish(j.id, JobStatus::failed, "late", done, again->claim));
+
+  // A lease that ran out while nobody claimed the job since (its holder was
+  // cut off from the store): the holder's heartbeat takes it back, and its
+  // finish is recorded.
+  NewJob cut = j;
+  cut.id = new_id();
+  store.submit(cut, std::nullopt);
+  const auto held = store.claim(a);
+  ASSERT_TRUE(held);
+  expire();
+  EXPECT_EQ(store.reclaim_expired(3).requeued, std::vector<std::string>{cut.id});
+  EXPECT_TRUE(store.renew(a, {{cut.id, held->claim}}).empty());
+  EXPECT_EQ(store.job(cut.id)->status, JobStatus::running);
+  expire();
+  EXPECT_EQ(store.reclaim_expired(3).requeued, std::vector<std::string>{cut.id});
+  EXPECT_TRUE(
+      store.finish(cut.id, JobStatus::successful, "done", {cut.id, 1, 1, 1, 0, 100}, held->claim));
+  EXPECT_EQ(store.job(cut.id)->status, JobStatus::successful);
+  EXPECT_FALSE(store.claim(b));  // nothing left queued
+
   // Dismissed while running: the holder learns it at its next heartbeat.
   NewJob k = j;
   k.id = new_id();
   store.submit(k, std::nullopt);
-  ASSERT_TRUE(store.claim(b));
+  const auto mine = store.claim(b);
+  ASSERT_TRUE(mine);
   store.dismiss(k.id);
-  EXPECT_EQ(store.renew(b, {k.id}), std::vector<std::string>{k.id});
-  // An expired job started max_attempts times fails instead.
+  EXPECT_EQ(store.renew(b, {{k.id, mine->claim}}), std::vector<std::string>{k.id});
+  // An expired job started max_attempts times fails instead, and its
+  // holder can no longer record an outcome.
   NewJob m = j;
   m.id = new_id();
   store.submit(m, std::nullopt);
-  ASSERT_TRUE(store.claim(a));
+  const auto last = store.claim(a);
+  ASSERT_TRUE(last);
   expire();
   EXPECT_EQ(store.reclaim_expired(1).failed, std::vector<std::string>{m.id});
   EXPECT_EQ(store.job(m.id)->status, JobStatus::failed);
+  EXPECT_FALSE(
+      store.finish(m.id, JobStatus::successful, "late", {m.id, 1, 1, 1, 0, 100}, last->claim));
   // The single server's own claims carry no lease: never reclaimed, and
   // recovered at its start-up instead.
   NewJob n = j;
@@ -221,6 +258,71 @@ TEST_F(ScaleOutPostgres, WorkersShareTheQueueAndFinishAKilledWorkersJob) {
   EXPECT_NE(logs.find("job " + long_job + ": its worker stopped renewing its lease"),
             std::string::npos)
       << logs;
+}
+
+// Every file of a directory: name -> size and modification time.
+std::map<std::string, std::pair<std::uintmax_t, fs::file_time_type>> snapshot(const fs::path& dir) {
+  std::map<std::string, std::pair<std::uintmax_t, fs::file_time_type>> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    if (e.is_regular_file()) {
+      files[fs::relative(e.path(), dir).string()] = {e.file_size(), e.last_write_time()};
+    }
+  }
+  return files;
+}
+
+// A worker frozen (SIGSTOP) past its lease while another worker runs its job
+// again and records it; thawed, the frozen run must not touch the job: the
+// results stay those of the run that was recorded, file for file.
+TEST_F(ScaleOutPostgres, AFrozenWorkerNeverTouchesAJobItLost) {
+  ServerProcess api(api_args());
+  auto w0 = worker(0);
+  auto w1 = worker(1);
+  auto c = api.client();
+  const double end_s = 1.0;  // about 4 s of one core
+  const std::string id = submit(c, tiny_job(end_s));
+  wait_for(c, id, [](const json& s) { return s.value("progress", 0) >= 20; });
+  PgDatabase db(uri_);
+  const std::string holder = db.value("SELECT worker FROM jobs WHERE id = '" + id + "'");
+  WorkerProcess* frozen = w0->name() == holder ? w0.get() : w1.get();
+  ASSERT_EQ(frozen->name(), holder);
+  ASSERT_EQ(::kill(frozen->pid(), SIGSTOP), 0);
+  const json done = wait_final(c, id);
+  EXPECT_EQ(done.at("status"), "successful") << done.dump();
+  EXPECT_EQ(done.at("attempts"), 2) << done.dump();
+  const fs::path published = results_.path() / id;
+  const auto before = snapshot(published);
+  ASSERT_TRUE(before.count("summary.json") && before.count("results.h5") &&
+              before.count("results.xmf") && before.count("history.csv"));
+
+  ASSERT_EQ(::kill(frozen->pid(), SIGCONT), 0);
+  // Thawed, its heartbeat learns that the claim is gone; its run stops and
+  // its files are discarded.
+  const auto deadline = Clock::now() + std::chrono::seconds(60);
+  while (frozen->log().find("job " + id + " stopped") == std::string::npos &&
+         frozen->log().find("job " + id + ": this run") == std::string::npos &&
+         Clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  ASSERT_NE(frozen->log().find("files were discarded"), std::string::npos) << frozen->log();
+  EXPECT_EQ(snapshot(published), before);
+  const json summary = json::parse(c.get("/jobs/" + id + "/files/summary.json").body);
+  EXPECT_EQ(summary.at("status"), "completed");
+  std::istringstream history(slurp(published / "history.csv"));
+  std::string row, last_row;
+  while (std::getline(history, row)) {
+    if (!row.empty()) last_row = row;
+  }
+  // The last row at the end time, not where the frozen run stood.
+  EXPECT_GE(std::stod(last_row), end_s) << last_row;
+  EXPECT_LT(std::stod(last_row), end_s * 1.001) << last_row;
+  const json status = c.get("/jobs/" + id).json();
+  EXPECT_EQ(status.at("status"), "successful");
+  EXPECT_EQ(status.at("attempts"), 2);
+  // No attempt directory of the job is left behind.
+  for (const auto& e : fs::directory_iterator(results_.path() / ".attempts")) {
+    EXPECT_NE(e.path().filename().string().rfind(id, 0), 0u) << e.path();
+  }
 }
 
 TEST_F(ScaleOutPostgres, RandomKillsLoseNoJobAndRunNoneTwice) {

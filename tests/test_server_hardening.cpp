@@ -420,7 +420,13 @@ TEST(ServerDismiss, ARunningJobsFilesGoOnceItStops) {
   const std::string id = submit(c, long_job);
   wait_for(c, id, [](const json& s) { return s.at("step").get<int>() > 0; });
   const fs::path dir = server.data() / "jobs" / id;
-  ASSERT_TRUE(fs::exists(dir / "job.json"));
+  // A run writes in its claim's own directory until its outcome is recorded.
+  fs::path attempt;
+  for (const auto& e : fs::directory_iterator(server.data() / "jobs" / ".attempts")) {
+    if (e.path().filename().string().rfind(id + ".", 0) == 0) attempt = e.path();
+  }
+  ASSERT_TRUE(fs::exists(attempt / "job.json"));
+  EXPECT_FALSE(fs::exists(dir));
   ASSERT_EQ(c.get("/jobs/" + id + "/files/job.json").status, 200u);
 
   ASSERT_EQ(c.request("DELETE", "/jobs/" + id).json().at("status"), "dismissed");
@@ -430,6 +436,7 @@ TEST(ServerDismiss, ARunningJobsFilesGoOnceItStops) {
     return s.at("message").get<std::string>().find("stopped at step") != std::string::npos;
   });
   EXPECT_FALSE(fs::exists(dir));
+  EXPECT_FALSE(fs::exists(attempt));
 
   // Left behind by a run that could not clean up: the next DELETE does.
   fs::create_directories(dir);
@@ -872,9 +879,7 @@ class GatedStore : public JobStore {
     return {{"accepted", 0}};
   }
   std::optional<JobRecord> claim(const Holder&) override { return std::nullopt; }
-  std::vector<std::string> renew(const Holder&, const std::vector<std::string>&) override {
-    return {};
-  }
+  std::vector<std::string> renew(const Holder&, const std::vector<HeldJob>&) override { return {}; }
   Recovery reclaim_expired(int) override { return {}; }
   std::vector<std::string> save_progress(const std::vector<ProgressUpdate>&) override { return {}; }
   bool finish(const std::string&, JobStatus, const std::string&, const ProgressUpdate&,

@@ -155,8 +155,9 @@ TEST(ServerJobStore, RecoverRequeuesThenFailsAfterMaxAttempts) {
     EXPECT_NE(store->job(j.id)->message.find("interrupted 2 times"), std::string::npos);
   }
   Database db(file);
-  // Version 2 added claims with leases and outside schedulers (scale-out).
-  EXPECT_EQ(db.query("SELECT version FROM schema_version").at(0).at(0), "2");
+  // Version 2 added claims with leases and outside schedulers (scale-out),
+  // version 3 the claims' tokens.
+  EXPECT_EQ(db.query("SELECT version FROM schema_version").at(0).at(0), "3");
   EXPECT_EQ(db.query("PRAGMA journal_mode").at(0).at(0), "wal");
 }
 
