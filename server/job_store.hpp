@@ -247,9 +247,9 @@ std::unique_ptr<JobStore> open_sqlite_job_store(const std::filesystem::path& fil
 // its schema created or migrated under an advisory lock. Throws if this
 // build has no PostgreSQL client library or the server cannot be reached.
 std::unique_ptr<JobStore> open_postgres_job_store(const std::string& uri);
-bool is_postgres_uri(std::string_view s);
-// A store named on the command line: a postgresql:// URI, or a SQLite file
-// (sqlite:PATH or a plain path).
+// A store named on the command line (store_location.hpp): PostgreSQL by
+// its URI or libpq's key=value form, or an SQLite file (sqlite:PATH or a
+// plain path); anything else is refused (std::invalid_argument).
 std::unique_ptr<JobStore> open_job_store(const std::string& location);
 
 }  // namespace gearsph::server

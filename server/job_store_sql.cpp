@@ -12,6 +12,7 @@
 
 #include "server/job_store.hpp"
 #include "server/sql.hpp"
+#include "server/store_location.hpp"
 
 namespace gearsph::server {
 
@@ -535,17 +536,10 @@ std::string new_claim_token() {
   return text;
 }
 
-bool is_postgres_uri(std::string_view s) {
-  return s.rfind("postgresql://", 0) == 0 || s.rfind("postgres://", 0) == 0;
-}
-
 std::unique_ptr<JobStore> open_job_store(const std::string& location) {
-  if (is_postgres_uri(location)) return open_postgres_job_store(location);
-  const std::string_view prefix = "sqlite:";
-  if (location.rfind(prefix, 0) == 0) {
-    return open_sqlite_job_store(location.substr(prefix.size()));
-  }
-  return open_sqlite_job_store(location);
+  const StoreLocation where = parse_store_location(location);
+  if (where.engine == StoreEngine::postgresql) return open_postgres_job_store(where.target);
+  return open_sqlite_job_store(where.target);
 }
 
 }  // namespace gearsph::server

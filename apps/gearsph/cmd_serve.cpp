@@ -1,6 +1,7 @@
 // gearsph serve: the job service (HTTP API, job store, worker pool).
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <thread>
 
@@ -11,6 +12,7 @@
 #include "fe/external_program.hpp"
 #endif
 #include "server/server.hpp"
+#include "server/store_location.hpp"
 
 namespace gearsph::cli {
 
@@ -52,7 +54,14 @@ int cmd_serve(Args& args) {
   c.port = static_cast<unsigned short>(port);
   if (auto v = args.option("bind")) c.bind = *v;
   if (auto v = args.option("data")) c.data_dir = *v;
-  if (auto v = args.option("store")) c.store = *v;
+  {
+    std::vector<std::string> warnings;
+    c.store = server::store_from_options(args.option("store"), args.option("store-file"),
+                                         std::getenv("GEARSPH_STORE"), warnings);
+    for (const std::string& w : warnings)
+      std::fprintf(stderr, "gearsph serve: warning: %s\n", w.c_str());
+    if (!c.store.empty()) server::parse_store_location(c.store);  // refused here, before anything
+  }
   if (auto v = args.option("results")) c.results_dir = *v;
   c.local_workers = !args.flag("no-local-workers");
   if (auto v = args.option("dispatch")) c.dispatch = *v;

@@ -7,6 +7,7 @@
 #include <signal.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <thread>
 
@@ -14,6 +15,7 @@
 #include "server/config.hpp"
 #include "server/event_hub.hpp"
 #include "server/job_store.hpp"
+#include "server/store_location.hpp"
 #include "server/worker_pool.hpp"
 
 namespace gearsph::cli {
@@ -36,11 +38,19 @@ double seconds_value(Args& args, const std::string& name, double fallback) {
 }  // namespace
 
 int cmd_worker(Args& args) {
-  const auto store_location = args.option("store");
+  std::vector<std::string> warnings;
+  const std::string store_location = server::store_from_options(
+      args.option("store"), args.option("store-file"), std::getenv("GEARSPH_STORE"), warnings);
   const auto results = args.option("results");
-  if (!store_location || !results) {
-    throw std::invalid_argument("usage: gearsph worker --store URL --results DIR");
+  if (store_location.empty() || !results) {
+    throw std::invalid_argument(
+        "usage: gearsph worker --store URL|--store-file FILE --results DIR (or the store in "
+        "GEARSPH_STORE)");
   }
+  for (const std::string& w : warnings) {
+    std::fprintf(stderr, "gearsph worker: warning: %s\n", w.c_str());
+  }
+  server::parse_store_location(store_location);  // refused here, before anything
   server::WorkerPoolOptions o;
   o.workers = args.integer("workers", 1);
   o.threads_per_job = args.integer("threads-per-job", 0);
@@ -70,7 +80,7 @@ int cmd_worker(Args& args) {
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
   std::filesystem::create_directories(o.jobs_dir);
-  auto store = server::open_job_store(*store_location);
+  auto store = server::open_job_store(store_location);
   server::EventHub hub;  // nobody listens here: the API reads progress from the store
   server::WorkerPool pool(*store, hub, o);
   pool.start();

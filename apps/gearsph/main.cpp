@@ -83,7 +83,9 @@ usage:
                 --max-connections N (512)  --image-cache-mb M (64, rendered images in memory)
       timeouts [s]: --header-timeout 10  --body-timeout 30  --idle-timeout 60
                 --write-timeout 60  --keepalive 15 (comments on quiet event streams)
-      many machines (docs/scale-out.md): --store URL (postgresql://... or sqlite:PATH)
+      many machines (docs/scale-out.md): --store URL (postgresql://..., libpq's
+                host=... dbname=..., or sqlite:PATH) or --store-file FILE (its first
+                line; or the environment's GEARSPH_STORE: no password in argv)
                 --results DIR  --no-local-workers  --lease S (30)  --dispatch local|slurm
                 --sbatch-arg A (repeatable)  --slurm-gearsph PATH
   gearsph submit JOB.json --server URL [--wait] [--out DIR] [--token-file F]
@@ -93,7 +95,7 @@ usage:
       --idempotency-key: a retried submission with the same key and job makes
       no second job; --retry-for: how long --wait keeps trying while the server
       is unreachable (300); exit 0 successful, 3 failed, 4 dismissed, 2 invalid
-  gearsph worker --store URL --results DIR [--workers N] [--threads-per-job M]
+  gearsph worker --store URL|--store-file FILE --results DIR [--workers N] [--threads-per-job M]
                  [--lease S] [--poll S] [--max-attempts N]
       run jobs from a shared job store (docs/scale-out.md): claims held for
       --lease seconds (30), the queue looked at every --poll seconds (0.5)
