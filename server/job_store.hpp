@@ -25,6 +25,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -32,6 +33,14 @@
 #include <nlohmann/json.hpp>
 
 namespace gearsph::server {
+
+// The store cannot be reached (its server down or restarting, the
+// connection lost, the file locked past the wait): the same request may
+// succeed later. The API answers it with 503 and Retry-After.
+class StoreUnavailable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 enum class JobStatus { accepted, running, successful, failed, dismissed };
 inline constexpr JobStatus kJobStatuses[] = {JobStatus::accepted, JobStatus::running,

@@ -13,6 +13,14 @@
 
 namespace gearsph::server {
 
+namespace {
+
+// Seconds a client is asked to wait while the job store is away: about
+// what a PostgreSQL restart takes.
+constexpr int kStoreRetryAfterS = 5;
+
+}  // namespace
+
 const std::vector<Route>& route_table() {
   using http::verb;
   constexpr Lane store = Lane::store;
@@ -467,6 +475,22 @@ Response Router::respond(Request& req, Match match) const {
     if (!match.route) return std::move(*match.answer);
     try {
       return match.route->handler(services_, req);
+    } catch (const StoreUnavailable& e) {
+      // The request may well succeed once the store is back.
+      services_.note_store_down(e.what());
+      std::fprintf(stderr, "gearsph serve: %s %s: %s\n",
+                   std::string(req.msg.method_string()).c_str(), req.path.c_str(), e.what());
+      problem::Problem p;
+      p.status = http::status::service_unavailable;
+      p.type = problem::kStoreUnavailable;
+      p.title = "Job store unavailable";
+      p.detail =
+          "the job store cannot be reached just now; try again shortly (a submission retried "
+          "with the same Idempotency-Key is never made twice)";
+      p.instance = req.path;
+      StringResponse busy = problem::make(p);
+      busy.set(http::field::retry_after, std::to_string(kStoreRetryAfterS));
+      return busy;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "gearsph serve: %s %s: %s\n",
                    std::string(req.msg.method_string()).c_str(), req.path.c_str(), e.what());

@@ -1,5 +1,10 @@
 // The service describing itself: landing page, conformance, health, the job
 // schema and the one process (OGC API - Processes).
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
 #include "server/openapi.hpp"
 #include "server/problem.hpp"
 #include "server/routes.hpp"
@@ -81,18 +86,34 @@ Response conformance(Services&, Request&) {
 Response health(Services& s, Request&) {
   const double uptime =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - s.started).count();
-  return json_response(http::status::ok, {{"status", "ok"},
-                                          {"version", version()},
-                                          {"uptime_s", uptime},
-                                          {"queue", s.queue_counts()},
-                                          {"workers", s.config.workers},
-                                          {"threads_per_job", s.config.threads_per_job},
-                                          {"core_budget", s.config.core_budget},
-                                          {"running_here", s.workers.running()},
-                                          {"connections", s.connections.load()},
-                                          {"event_streams", s.hub.subscribers()},
-                                          {"image_cache", s.images.stats()},
-                                          {"requests", s.requests.load()}});
+  // What the service needs: the job store (checked every second by the
+  // queue counts, and by every request) and the results directory.
+  const auto [store_error, store_down_s] = s.store_down();
+  nlohmann::json store = {{"status", store_error.empty() ? "up" : "down"}};
+  if (!store_error.empty()) {
+    store["detail"] = store_error;
+    store["down_for_s"] = store_down_s;
+  }
+  const bool results_ok = ::access(s.jobs_dir.c_str(), W_OK | X_OK) == 0;
+  nlohmann::json results = {{"status", results_ok ? "up" : "down"}, {"path", s.jobs_dir.string()}};
+  if (!results_ok) results["detail"] = std::string("not writable: ") + std::strerror(errno);
+  const bool up = store_error.empty() && results_ok;
+  StringResponse res = json_response(up ? http::status::ok : http::status::service_unavailable,
+                                     {{"status", up ? "ok" : "degraded"},
+                                      {"dependencies", {{"store", store}, {"results", results}}},
+                                      {"version", version()},
+                                      {"uptime_s", uptime},
+                                      {"queue", s.queue_counts()},
+                                      {"workers", s.config.workers},
+                                      {"threads_per_job", s.config.threads_per_job},
+                                      {"core_budget", s.config.core_budget},
+                                      {"running_here", s.workers.running()},
+                                      {"connections", s.connections.load()},
+                                      {"event_streams", s.hub.subscribers()},
+                                      {"image_cache", s.images.stats()},
+                                      {"requests", s.requests.load()}});
+  if (!up) res.set(http::field::retry_after, "5");
+  return res;
 }
 
 Response schema(Services&, Request&) {

@@ -50,11 +50,29 @@ struct Services {
     std::map<std::string, std::int64_t> counts;
     try {
       counts = store.count_by_status();
-    } catch (const std::exception&) {
+    } catch (const std::exception& e) {
+      note_store_down(e.what());
       return;  // the store is away: keep the last counts
     }
     std::lock_guard<std::mutex> lock(counts_mutex_);
     queue_counts_ = std::move(counts);
+    store_error_.clear();
+  }
+
+  // The store failed a request or the counts' refresh; the next refresh
+  // that succeeds clears it.
+  void note_store_down(const std::string& why) {
+    std::lock_guard<std::mutex> lock(counts_mutex_);
+    if (store_error_.empty()) store_down_since_ = std::chrono::steady_clock::now();
+    store_error_ = why;
+  }
+  // "" while the store answers; else the last failure and its age in seconds.
+  std::pair<std::string, double> store_down() const {
+    std::lock_guard<std::mutex> lock(counts_mutex_);
+    if (store_error_.empty()) return {"", 0.0};
+    return {store_error_,
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - store_down_since_)
+                .count()};
   }
   std::map<std::string, std::int64_t> queue_counts() const {
     std::lock_guard<std::mutex> lock(counts_mutex_);
@@ -70,6 +88,8 @@ struct Services {
 
  private:
   mutable std::mutex counts_mutex_;
+  std::string store_error_;
+  std::chrono::steady_clock::time_point store_down_since_;
   std::map<std::string, std::int64_t> queue_counts_;
 };
 

@@ -140,12 +140,30 @@ postgres::Params params_of(const sql::Values& values) {
   return out;
 }
 
+// A connection that failed or was lost (SQLSTATE class 08, or none: libpq
+// could not reach the server) and a server shutting down or starting
+// (57P01-57P03): the store is away, not the request wrong.
+bool unreachable(const postgres::Error& e) {
+  return e.sqlstate.empty() || e.sqlstate.rfind("08", 0) == 0 || e.sqlstate.rfind("57P0", 0) == 0;
+}
+
+template <class F>
+auto guarded(F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const postgres::Error& e) {
+    if (unreachable(e)) throw StoreUnavailable(e.what());
+    throw;
+  }
+}
+
 class PostgresConnection : public sql::Connection {
  public:
   explicit PostgresConnection(postgres::Pool::Lease lease) : db_(std::move(lease)) {}
 
   sql::Rows query(const std::string& text, const sql::Values& params) override {
-    const postgres::Result r = db_->exec(numbered_parameters(text), params_of(params));
+    const postgres::Result r =
+        guarded([&] { return db_->exec(numbered_parameters(text), params_of(params)); });
     sql::Rows rows;
     for (int i = 0; i < r.rows(); ++i) {
       std::vector<sql::Value> cells;
@@ -162,12 +180,19 @@ class PostgresConnection : public sql::Connection {
   }
 
   std::int64_t execute(const std::string& text, const sql::Values& params) override {
-    return db_->exec(numbered_parameters(text), params_of(params)).affected();
+    return guarded([&] { return db_->exec(numbered_parameters(text), params_of(params)); })
+        .affected();
   }
 
-  void script(const std::string& text) override { db_->exec(text); }
-  void begin() override { db_->exec("BEGIN"); }
-  void commit() override { db_->exec("COMMIT"); }
+  void script(const std::string& text) override {
+    guarded([&] { db_->exec(text); });
+  }
+  void begin() override {
+    guarded([&] { db_->exec("BEGIN"); });
+  }
+  void commit() override {
+    guarded([&] { db_->exec("COMMIT"); });
+  }
   void rollback() override {
     if (db_->ok()) db_->exec("ROLLBACK");  // else the server rolled back already
   }
@@ -181,7 +206,7 @@ class PostgresDatabase : public sql::Database {
   explicit PostgresDatabase(const std::string& uri) : pool_(uri), dialect_(postgres_dialect()) {}
   const sql::Dialect& dialect() const override { return dialect_; }
   std::unique_ptr<sql::Connection> connect() override {
-    return std::make_unique<PostgresConnection>(pool_.acquire());
+    return std::make_unique<PostgresConnection>(guarded([&] { return pool_.acquire(); }));
   }
 
  private:

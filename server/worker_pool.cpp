@@ -342,7 +342,7 @@ void WorkerPool::run(const JobRecord& job, int& held) {
   // recorded, or until the store says another claim has the job (then
   // finish is refused above). Only a stopping process gives up, and says so.
   for (auto pause = std::chrono::milliseconds(250);;
-       pause = std::min(pause * 2, std::chrono::milliseconds(5000))) {
+       pause = std::min(pause * 2, std::chrono::milliseconds(1000))) {
     try {
       record_outcome();
       break;

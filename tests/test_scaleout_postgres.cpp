@@ -431,5 +431,84 @@ TEST_F(ScaleOutPostgres, DatabaseRestartLosesNothing) {
   }
 }
 
+// The database down: every endpoint that needs it answers 503 with
+// Retry-After (not 500), /health names the store as the dependency that is
+// down, and everything works again once it is back.
+TEST_F(ScaleOutPostgres, TheStoreDownAnswers503WithRetryAfter) {
+  ServerProcess api(api_args());
+  auto c = api.client();
+  const std::string id = submit(c, tiny_job(0.01));  // no worker: it stays queued
+  ASSERT_EQ(pg_->run("down"), 0);
+  const std::vector<std::pair<std::string, std::string>> requests = {
+      {"GET", "/jobs"},
+      {"GET", "/jobs/" + id},
+      {"GET", "/jobs/" + id + "/results"},
+      {"GET", "/jobs/" + id + "/files"},
+      {"GET", "/jobs/" + id + "/files/summary.json"},
+      {"GET", "/jobs/" + id + "/events"},
+      {"DELETE", "/jobs/" + id},
+      {"POST", "/jobs"},
+      {"POST", "/studies"},
+      {"GET", "/studies/00000000-0000-0000-0000-000000000000"}};
+  for (const auto& [method, target] : requests) {
+    const ClientResponse r =
+        method == "POST"
+            ? c.post_json(
+                  target,
+                  target == "/jobs"
+                      ? tiny_job(0.01).dump()
+                      : json{{"base", tiny_job(0.01)},
+                             {"axes", {{{"pointer", "/time/end_s"}, {"values", {0.01, 0.02}}}}}}
+                            .dump())
+            : c.request(method, target);
+    EXPECT_EQ(r.status, 503u) << method << " " << target << ": " << r.body;
+    EXPECT_EQ(r.header("retry-after"), "5") << method << " " << target;
+  }
+  // /health: 503 once its refresh (every second) found the store away.
+  ClientResponse h;
+  const auto deadline = Clock::now() + std::chrono::seconds(10);
+  do {
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    h = c.get("/health");
+  } while (h.status != 503 && Clock::now() < deadline);
+  ASSERT_EQ(h.status, 503u) << h.body;
+  EXPECT_EQ(h.header("retry-after"), "5");
+  const json health = h.json();
+  EXPECT_EQ(health.at("status"), "degraded");
+  EXPECT_EQ(health.at("dependencies").at("store").at("status"), "down") << h.body;
+  EXPECT_EQ(health.at("dependencies").at("results").at("status"), "up") << h.body;
+
+  ASSERT_EQ(pg_->run("up"), 0);
+  const auto back = Clock::now() + std::chrono::seconds(30);
+  do {
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    h = c.get("/health");
+  } while (h.status != 200 && Clock::now() < back);
+  EXPECT_EQ(h.status, 200u) << h.body;
+  EXPECT_EQ(h.json().at("dependencies").at("store").at("status"), "up");
+  EXPECT_EQ(c.get("/jobs/" + id).json().at("status"), "accepted");
+}
+
+// A run that finishes while the database is down (longer than its lease) is
+// recorded once the database is back: not thrown away, not run again.
+TEST_F(ScaleOutPostgres, ARunThatFinishesDuringAnOutageIsKept) {
+  ServerProcess api(api_args());
+  auto w = worker(0);
+  auto c = api.client();
+  const std::string id = submit(c, tiny_job(2.0));  // 2-5 s of one core
+  wait_for(c, id, [](const json& s) { return s.value("progress", 0) >= 5; });
+  ASSERT_EQ(pg_->run("down"), 0);
+  // Down for five leases: the run finishes meanwhile.
+  std::this_thread::sleep_for(std::chrono::seconds(10));
+  ASSERT_EQ(pg_->run("up"), 0);
+  const json done = wait_final(c, id);
+  EXPECT_EQ(done.at("status"), "successful") << done.dump();
+  EXPECT_EQ(done.at("attempts"), 1) << done.dump();
+  EXPECT_EQ(count(w->started()).at(id), 1) << w->log();
+  EXPECT_EQ(json::parse(c.get("/jobs/" + id + "/files/summary.json").body).at("status"),
+            "completed");
+  EXPECT_NE(w->log().find("recording its outcome failed"), std::string::npos) << w->log();
+}
+
 }  // namespace
 }  // namespace gearsph::server::testing

@@ -4,6 +4,8 @@
 #
 #   tests/scaleout/postgres.sh start DIR [PORT]   # prints the store URI
 #   tests/scaleout/postgres.sh restart DIR        # fast restart, same port
+#   tests/scaleout/postgres.sh down DIR           # the server stopped (an outage) ...
+#   tests/scaleout/postgres.sh up DIR             # ... and started again, same port
 #   tests/scaleout/postgres.sh stop DIR
 #
 # The cluster lives in DIR/pg and listens on 127.0.0.1:PORT (a free port if
@@ -12,8 +14,8 @@
 # Debian `postgres` user (DIR is made world-traversable for it), otherwise as
 # the calling user.
 set -euo pipefail
-cmd=${1:?usage: postgres.sh start|restart|stop DIR [PORT]}
-dir=${2:?usage: postgres.sh start|restart|stop DIR [PORT]}
+cmd=${1:?usage: postgres.sh start|restart|down|up|stop DIR [PORT]}
+dir=${2:?usage: postgres.sh start|restart|down|up|stop DIR [PORT]}
 script=$(cd "$(dirname "$0")" && pwd)/$(basename "$0")
 
 # The engine watchdog (start_watchdog, stop_watchdog) needs $script and $dir.
@@ -54,6 +56,15 @@ restart)
   dir=$(cd "$dir" && pwd)
   as_owner "$bin/pg_ctl" -D "$dir/pg" -m fast -w -t 60 -o "$(pg_options)" restart >/dev/null
   ;;
+down)
+  dir=$(cd "$dir" && pwd)
+  as_owner "$bin/pg_ctl" -D "$dir/pg" -m immediate -w -t 60 stop >/dev/null
+  ;;
+up)
+  dir=$(cd "$dir" && pwd)
+  as_owner "$bin/pg_ctl" -D "$dir/pg" -l "$dir/pg/server.log" -w -t 60 -o "$(pg_options)" start \
+    >/dev/null || { cat "$dir/pg/server.log" >&2; exit 1; }
+  ;;
 stop)
   if [ -d "$dir/pg" ]; then
     dir=$(cd "$dir" && pwd)
@@ -62,7 +73,7 @@ stop)
   fi
   ;;
 *)
-  echo "usage: postgres.sh start|restart|stop DIR [PORT]" >&2
+  echo "usage: postgres.sh start|restart|down|up|stop DIR [PORT]" >&2
   exit 2
   ;;
 esac
