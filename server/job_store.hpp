@@ -234,6 +234,10 @@ class JobStore {
   // The scheduler started it: accepted -> running, attempts + 1.
   virtual bool start_dispatched(const std::string& id, const std::string& worker,
                                 const std::string& message) = 0;
+  // The scheduler put it back in its queue (a requeue, a preemption):
+  // running -> accepted, progress from the start, the reference kept.
+  virtual bool unstart_dispatched(const std::string& id, const std::string& ref,
+                                  const std::string& message) = 0;
   // Drops the reference of a job that is finished or dismissed (after the
   // scheduler was told to cancel it).
   virtual void forget_dispatch(const std::string& id) = 0;

@@ -425,6 +425,15 @@ class SqlJobStore : public JobStore {
                {worker, message, id}) > 0;
   }
 
+  bool unstart_dispatched(const std::string& id, const std::string& ref,
+                          const std::string& message) override {
+    return db_->connect()->execute(
+               "UPDATE jobs SET status = 'accepted', message = ?, started = NULL, " +
+                   std::string(kFromTheStart) + ", updated = " + now_ +
+                   " WHERE id = ? AND status = 'running' AND dispatch_ref = ?",
+               {message, id, ref}) > 0;
+  }
+
   void forget_dispatch(const std::string& id) override {
     db_->connect()->execute(
         "UPDATE jobs SET dispatch_ref = NULL WHERE id = ? AND status IN "

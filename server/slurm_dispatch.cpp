@@ -442,7 +442,17 @@ void SlurmDispatcher::track() {
                                   (it->second.reason.empty() || it->second.reason == "None"
                                        ? std::string()
                                        : " (" + it->second.reason + ")");
-      if (job.status == JobStatus::accepted && job.message != message) {
+      if (job.status == JobStatus::running) {
+        // Requeued (scontrol requeue, a node failure, preemption): the run
+        // it had started is gone, and Slurm will start it again.
+        store_.unstart_dispatched(job.id, ref,
+                                  "queued again in Slurm as job " + slurm_id + " (" + state +
+                                      (it->second.reason.empty() || it->second.reason == "None"
+                                           ? std::string()
+                                           : ", " + it->second.reason) +
+                                      "); it starts again from the beginning");
+      } else if (job.status == JobStatus::accepted && job.message != message &&
+                 job.message.rfind("queued again", 0) != 0) {
         store_.set_dispatch(job.id, JobStatus::accepted, ref, message);
       }
       continue;

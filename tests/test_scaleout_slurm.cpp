@@ -159,6 +159,36 @@ TEST_F(ScaleOutSlurm, SubmittedJobsRunToCompletion) {
   expect_consistent_store(api.data());
 }
 
+// scontrol requeue: Slurm holds the job pending again, and so does the job
+// store (accepted, not "running 30 %" for minutes); dismissing it then
+// cancels the pending Slurm job.
+TEST_F(ScaleOutSlurm, ARequeuedJobShowsQueued) {
+  ServerProcess api({"--dispatch", "slurm", "--threads-per-job", "1"});
+  auto c = api.client();
+  const std::string id = submit(c, tiny_job(20.0));
+  const json running = wait_for(c, id, [](const json& s) { return s.at("status") == "running"; });
+  ASSERT_EQ(running.at("status"), "running") << running.dump() << api.log();
+  const auto slurm = slurm_job_of(id);
+  ASSERT_TRUE(slurm);
+  std::string out;
+  ASSERT_EQ(shell("scontrol requeue " + slurm->job_id, &out), 0) << out;
+  const json queued = wait_for(
+      c, id, [](const json& s) { return s.at("status") == "accepted"; }, std::chrono::seconds(30));
+  EXPECT_EQ(queued.at("status"), "accepted") << queued.dump();
+  EXPECT_NE(
+      queued.at("message").get<std::string>().find("queued again in Slurm as job " + slurm->job_id),
+      std::string::npos)
+      << queued.dump();
+  EXPECT_EQ(queued.at("progress"), 0);
+  const std::string state = state_of(id);
+  EXPECT_TRUE(slurm_phase(state) == SlurmPhase::queued) << state;
+  ASSERT_EQ(c.request("DELETE", "/jobs/" + id).status, 200u);
+  const json s = wait_for(c, id, [](const json& d) {
+    return d.at("message").get<std::string>().find("was cancelled") != std::string::npos;
+  });
+  EXPECT_EQ(s.at("status"), "dismissed") << s.dump();
+}
+
 TEST_F(ScaleOutSlurm, DismissCancelsTheSlurmJob) {
   ServerProcess api({"--dispatch", "slurm", "--threads-per-job", "1"});
   auto c = api.client();

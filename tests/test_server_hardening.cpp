@@ -904,6 +904,9 @@ class GatedStore : public JobStore {
   bool start_dispatched(const std::string&, const std::string&, const std::string&) override {
     return false;
   }
+  bool unstart_dispatched(const std::string&, const std::string&, const std::string&) override {
+    return false;
+  }
   void forget_dispatch(const std::string&) override {}
   std::vector<JobRecord> active_or_changed_within(double) override { return {}; }
 
