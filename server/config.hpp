@@ -64,6 +64,9 @@ struct ServerConfig {
   std::chrono::milliseconds progress_interval{250};  // at most 4 progress events/s per job
   std::chrono::milliseconds flush_interval{1000};    // progress batches to the store
   std::chrono::milliseconds shutdown_grace{3000};    // for in-flight responses on SIGTERM
+  // SIGTERM: running jobs may finish for this long (a warm shutdown) before
+  // they stop and go back to the queue; a second signal cuts it short.
+  std::chrono::milliseconds job_grace{0};
   Limits limits;
   Timeouts timeouts;
   ImageProvider image_provider;                // empty: the images endpoint answers 501

@@ -15,6 +15,8 @@ class Dispatcher {
   virtual void start() = 0;
   // A job was queued: look for work now rather than at the next poll.
   virtual void notify() = 0;
+  // Takes no new jobs; those running go on (a warm shutdown's first part).
+  virtual void drain() {}
   // Graceful stop; returns when nothing runs on its behalf any more.
   virtual void stop() = 0;
   // The newest progress of a job running here (in this process's memory).

@@ -225,12 +225,17 @@ class JobStore {
   virtual std::optional<JobRecord> claim_for_dispatch(const std::string& ref) = 0;
   // Every job that carries a dispatch reference.
   virtual std::vector<JobRecord> dispatched() = 0;
-  // Replaces the reference and the message of a dispatched job, if it still
-  // has status `status`.
-  virtual bool set_dispatch(const std::string& id, JobStatus status, const std::string& ref,
-                            const std::string& message) = 0;
-  // Handing over failed: the job is queued again, without a reference.
-  virtual bool release_dispatch(const std::string& id, const std::string& message) = 0;
+  // Compare and set: replaces the reference and the message of a dispatched
+  // job, if it still has status `status` and the reference `expected`, and
+  // (min_age_s > 0) has not changed for that many seconds by the store's
+  // clock. Of two API nodes racing for one job, one wins.
+  virtual bool set_dispatch(const std::string& id, JobStatus status, const std::string& expected,
+                            const std::string& ref, const std::string& message,
+                            double min_age_s = 0) = 0;
+  // Handing over failed: the job is queued again, without a reference; with
+  // the same conditions on the reference `expected` as set_dispatch.
+  virtual bool release_dispatch(const std::string& id, const std::string& expected,
+                                const std::string& message, double min_age_s = 0) = 0;
   // The scheduler started it: accepted -> running, attempts + 1.
   virtual bool start_dispatched(const std::string& id, const std::string& worker,
                                 const std::string& message) = 0;

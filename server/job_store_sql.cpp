@@ -401,18 +401,23 @@ class SqlJobStore : public JobStore {
         db_->connect()->query(kSelectJob + " WHERE dispatch_ref IS NOT NULL ORDER BY seq"));
   }
 
-  bool set_dispatch(const std::string& id, JobStatus status, const std::string& ref,
-                    const std::string& message) override {
+  bool set_dispatch(const std::string& id, JobStatus status, const std::string& expected,
+                    const std::string& ref, const std::string& message, double min_age_s) override {
     return db_->connect()->execute(
                "UPDATE jobs SET dispatch_ref = ?, message = ?, updated = " + now_ +
-                   " WHERE id = ? AND status = ? AND dispatch_ref IS NOT NULL",
-               {ref, message, id, text(status)}) > 0;
+                   " WHERE id = ? AND status = ? AND dispatch_ref = ? AND "
+                   "updated <= " +
+                   d_.time_ago,
+               {ref, message, id, text(status), expected, min_age_s}) > 0;
   }
 
-  bool release_dispatch(const std::string& id, const std::string& message) override {
-    return db_->connect()->execute("UPDATE jobs SET dispatch_ref = NULL, message = ?, updated = " +
-                                       now_ + " WHERE id = ? AND status = 'accepted'",
-                                   {message, id}) > 0;
+  bool release_dispatch(const std::string& id, const std::string& expected,
+                        const std::string& message, double min_age_s) override {
+    return db_->connect()->execute(
+               "UPDATE jobs SET dispatch_ref = NULL, message = ?, updated = " + now_ +
+                   " WHERE id = ? AND status = 'accepted' AND dispatch_ref = ? AND updated <= " +
+                   d_.time_ago,
+               {message, id, expected, min_age_s}) > 0;
   }
 
   bool start_dispatched(const std::string& id, const std::string& worker,

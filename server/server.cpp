@@ -139,12 +139,25 @@ void Server::stop() {
   stop_wake_.notify_all();
 }
 
-void Server::run() {
+void Server::wait_for_signal() {
   signals_.async_wait([this](boost::system::error_code ec, int signal) {
     if (ec) return;
-    std::fprintf(stderr, "gearsph serve: %s: stopping\n", signal == SIGINT ? "SIGINT" : "SIGTERM");
+    const char* name = signal == SIGINT ? "SIGINT" : "SIGTERM";
+    bool again = false;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      again = stop_requested_;
+      if (again) hurry_ = true;
+    }
+    std::fprintf(stderr, "gearsph serve: %s: %s\n", name,
+                 again ? "stopping the running jobs now" : "stopping");
     stop();
+    wait_for_signal();  // a second signal cuts the warm shutdown short
   });
+}
+
+void Server::run() {
+  wait_for_signal();
   workers_->start();
   if (watcher_) watcher_->start();
   listener_->run();
@@ -155,6 +168,19 @@ void Server::run() {
   {
     std::unique_lock<std::mutex> lock(mutex_);
     stop_wake_.wait(lock, [this] { return stop_requested_; });
+  }
+  // A warm shutdown: no new jobs start; the running ones may finish while
+  // the API goes on answering about them, until the grace runs out or a
+  // second signal.
+  if (config_.job_grace.count() > 0 && workers_->running() > 0) {
+    std::fprintf(stderr, "gearsph serve: letting %d running job(s) finish, for up to %.3g s\n",
+                 workers_->running(), config_.job_grace.count() / 1000.0);
+    workers_->drain();
+    const auto end = std::chrono::steady_clock::now() + config_.job_grace;
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (workers_->running() > 0 && !hurry_ && std::chrono::steady_clock::now() < end) {
+      stop_wake_.wait_for(lock, std::chrono::milliseconds(100));
+    }
   }
   services_->stopping = true;
   listener_->stop();

@@ -39,6 +39,7 @@ class Server {
   void stop();  // thread-safe
 
  private:
+  void wait_for_signal();
   void refresh_counts_every_second();
 
   ServerConfig config_;
@@ -58,6 +59,7 @@ class Server {
   std::mutex mutex_;
   std::condition_variable stop_wake_;
   bool stop_requested_ = false;
+  bool hurry_ = false;  // a second signal: no more grace for running jobs
 };
 
 }  // namespace gearsph::server

@@ -23,6 +23,11 @@ using Clock = std::chrono::steady_clock;
 
 constexpr const char* kRefPrefix = "slurm:";
 constexpr const char* kSubmitting = "slurm:submitting:";
+// A placeholder this old belongs to a server that is gone (sbatch is given
+// 60 s at most; run_command): another API node may then adopt the Slurm
+// job it made, or queue the job again. Younger ones are left alone, or two
+// nodes would both submit the job.
+constexpr double kPlaceholderGoneAfterS = 120;
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() &&
@@ -357,16 +362,28 @@ bool SlurmDispatcher::submit(const JobRecord& job) {
     const std::string why = std::string(trim(r.err.empty() ? r.out : r.err));
     std::fprintf(stderr, "gearsph serve: slurm: sbatch refused job %s: %s\n", job.id.c_str(),
                  why.c_str());
-    store_.release_dispatch(job.id, "queued; sbatch failed (" + why + "), trying again");
+    store_.release_dispatch(job.id, job.dispatch_ref,
+                            "queued; sbatch failed (" + why + "), trying again");
     return false;
   }
-  if (!store_.set_dispatch(job.id, JobStatus::accepted, kRefPrefix + *slurm_id,
+  const std::string ref = kRefPrefix + *slurm_id;
+  if (!store_.set_dispatch(job.id, JobStatus::accepted, job.dispatch_ref, ref,
                            "queued in Slurm as job " + *slurm_id)) {
     // Dismissed while sbatch ran: keep the Slurm job's id so that the next
     // pass cancels it instead of leaving it to run unseen.
-    store_.set_dispatch(
-        job.id, JobStatus::dismissed, kRefPrefix + *slurm_id,
-        "dismissed while it was being submitted to Slurm (job " + *slurm_id + "); cancelling it");
+    if (!store_.set_dispatch(job.id, JobStatus::dismissed, job.dispatch_ref, ref,
+                             "dismissed while it was being submitted to Slurm (job " + *slurm_id +
+                                 "); cancelling it")) {
+      // Another node took the job over (this one was frozen past
+      // kPlaceholderGoneAfterS): its Slurm job is the job's; this one goes.
+      const CommandResult c = run_command({"scancel", *slurm_id});
+      std::fprintf(stderr,
+                   "gearsph serve: job %s: another node took it over while sbatch ran; the Slurm "
+                   "job %s made here %s\n",
+                   job.id.c_str(), slurm_id->c_str(),
+                   c.status == 0 ? "was cancelled" : "could not be cancelled");
+      return true;
+    }
   }
   std::fprintf(stderr, "gearsph serve: job %s submitted to Slurm as job %s\n", job.id.c_str(),
                slurm_id->c_str());
@@ -377,7 +394,7 @@ void SlurmDispatcher::track() {
   const std::vector<JobRecord> jobs = store_.dispatched();
   if (jobs.empty()) return;
   const CommandResult q = run_command(
-      {"squeue", "--noheader", "--states=all", std::string("--format=") + kSqueueFormat});
+      {"squeue", "--me", "--noheader", "--states=all", std::string("--format=") + kSqueueFormat});
   if (q.status != 0) {
     throw std::runtime_error("squeue failed: " + std::string(trim(q.err)));
   }
@@ -390,14 +407,17 @@ void SlurmDispatcher::track() {
     const std::string& ref = job.dispatch_ref;
     if (ref.rfind(kSubmitting, 0) == 0) {
       if (ref == kSubmitting + options_.name) continue;  // ours, being submitted
-      // Left by a server that stopped during sbatch: adopt the Slurm job if
-      // it was made, else queue the job again.
+      // Left by a server that stopped during sbatch (its placeholder
+      // unchanged for longer than any sbatch takes): adopt the Slurm job if
+      // it was made, else queue the job again. Each a compare and set: of
+      // several nodes that find it, one acts.
       const auto it = by_name.find(job_name(job.id));
       if (it != by_name.end()) {
-        store_.set_dispatch(job.id, job.status, kRefPrefix + it->second.job_id,
-                            "queued in Slurm as job " + it->second.job_id);
+        store_.set_dispatch(job.id, job.status, ref, kRefPrefix + it->second.job_id,
+                            "queued in Slurm as job " + it->second.job_id, kPlaceholderGoneAfterS);
       } else if (job.status == JobStatus::accepted) {
-        store_.release_dispatch(job.id, "queued (its submission to Slurm was interrupted)");
+        store_.release_dispatch(job.id, ref, "queued (its submission to Slurm was interrupted)",
+                                kPlaceholderGoneAfterS);
       } else {
         store_.forget_dispatch(job.id);
       }
@@ -453,7 +473,7 @@ void SlurmDispatcher::track() {
                                       "); it starts again from the beginning");
       } else if (job.status == JobStatus::accepted && job.message != message &&
                  job.message.rfind("queued again", 0) != 0) {
-        store_.set_dispatch(job.id, JobStatus::accepted, ref, message);
+        store_.set_dispatch(job.id, JobStatus::accepted, ref, ref, message);
       }
       continue;
     }

@@ -102,6 +102,11 @@ void WorkerPool::notify() {
   wake_.notify_all();
 }
 
+void WorkerPool::drain() {
+  draining_ = true;
+  wake_.notify_all();
+}
+
 void WorkerPool::stop() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -174,7 +179,7 @@ void WorkerPool::work() {
     std::optional<JobRecord> job;
     try {
       if (options_.holder.lease_s > 0) reclaim();
-      job = store_.claim(options_.holder);
+      if (!draining_) job = store_.claim(options_.holder);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "%s: claiming a job failed: %s\n", options_.log_name.c_str(), e.what());
     }

@@ -57,6 +57,9 @@ class WorkerPool : public Dispatcher {
   void start() override;
   // A job was queued: wake an idle worker.
   void notify() override;
+  // Claims no more jobs; running ones go on until they end or stop() (a
+  // warm shutdown: running() tells when they are done).
+  void drain() override;
   // Graceful stop: running jobs are cancelled at their next check and put
   // back in the queue (their message says so); returns once every worker
   // has finished and the last progress is stored.
@@ -100,6 +103,7 @@ class WorkerPool : public Dispatcher {
   int cores_in_use_ = 0;  // core_budget mode: cores held by running jobs (mutex_)
   std::condition_variable core_freed_;
   std::atomic<bool> stopping_{false};
+  std::atomic<bool> draining_{false};
   std::vector<std::thread> threads_;
   std::thread flusher_;
   std::mutex flush_mutex_;

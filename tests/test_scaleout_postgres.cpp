@@ -510,5 +510,38 @@ TEST_F(ScaleOutPostgres, ARunThatFinishesDuringAnOutageIsKept) {
   EXPECT_NE(w->log().find("recording its outcome failed"), std::string::npos) << w->log();
 }
 
+// A warm shutdown: SIGTERM lets the running job finish (the worker claims
+// nothing more meanwhile) and the worker exits; a second SIGTERM during the
+// grace stops the job at once and puts it back in the queue.
+TEST_F(ScaleOutPostgres, AWarmShutdownLetsRunningJobsFinish) {
+  ServerProcess api(api_args());
+  auto c = api.client();
+  auto w = worker(0, {"--job-grace", "60"});
+  const std::string first = submit(c, tiny_job(1.0));  // 2-5 s of one core
+  wait_for(c, first, [](const json& s) { return s.value("progress", 0) >= 10; });
+  const std::string queued = submit(c, tiny_job(0.02));
+  EXPECT_EQ(w->stop(SIGTERM), 0) << w->log();
+  EXPECT_EQ(c.get("/jobs/" + first).json().at("status"), "successful");
+  EXPECT_EQ(c.get("/jobs/" + first).json().at("attempts"), 1);
+  EXPECT_EQ(c.get("/jobs/" + queued).json().at("status"), "accepted");
+  EXPECT_EQ(count(w->started()).count(queued), 0u) << w->log();  // never claimed
+  EXPECT_NE(w->log().find("letting 1 running job(s) finish"), std::string::npos) << w->log();
+
+  // Cut short: the second signal stops the job, which is queued again.
+  auto w2 = worker(1, {"--job-grace", "60"});
+  const std::string second = submit(c, tiny_job(5.0));
+  wait_for(c, second, [](const json& s) { return s.value("progress", 0) >= 1; });
+  ::kill(w2->pid(), SIGTERM);
+  const auto deadline = Clock::now() + std::chrono::seconds(30);
+  while (w2->log().find("letting") == std::string::npos && Clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  EXPECT_EQ(w2->stop(SIGTERM), 0) << w2->log();
+  const json back = c.get("/jobs/" + second).json();
+  EXPECT_EQ(back.at("status"), "accepted") << back.dump();
+  EXPECT_NE(back.at("message").get<std::string>().find("re-queued"), std::string::npos)
+      << back.dump();
+}
+
 }  // namespace
 }  // namespace gearsph::server::testing

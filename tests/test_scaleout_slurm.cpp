@@ -6,6 +6,7 @@
 // submitted through the API to completion, a cancellation, and the server
 // killed and restarted while its Slurm job runs.
 #include <cstdlib>
+#include <fstream>
 
 #include "server/slurm_dispatch.hpp"
 #include "tests/scaleout/support.hpp"
@@ -187,6 +188,55 @@ TEST_F(ScaleOutSlurm, ARequeuedJobShowsQueued) {
     return d.at("message").get<std::string>().find("was cancelled") != std::string::npos;
   });
   EXPECT_EQ(s.at("status"), "dismissed") << s.dump();
+}
+
+// Two API nodes dispatching to Slurm from one PostgreSQL store, with an
+// sbatch that takes 1.5 s to answer (a busy controller): each job is
+// submitted to Slurm once, and each outcome is its own run's.
+TEST_F(ScaleOutSlurm, TwoApiNodesSubmitEachJobOnce) {
+  std::string out;
+  if (shell("ls /usr/lib/postgresql/*/bin/initdb", &out) != 0) {
+    GTEST_SKIP() << "PostgreSQL server binaries are missing; apt-get install postgresql";
+  }
+  Engine pg(script("postgres.sh"));
+  ASSERT_TRUE(pg.started()) << pg.output();
+  TempDir wrappers, results;
+  const std::string real_sbatch = [] {
+    std::string path;
+    shell("command -v sbatch", &path);
+    while (!path.empty() && path.back() == '\n') path.pop_back();
+    return path;
+  }();
+  std::ofstream(wrappers.path() / "sbatch")
+      << "#!/bin/sh\nsleep 1.5\nexec " << real_sbatch << " \"$@\"\n";
+  fs::permissions(wrappers.path() / "sbatch", fs::perms::owner_all);
+  const std::string path = std::getenv("PATH");
+  ::setenv("PATH", (wrappers.path().string() + ":" + path).c_str(), 1);
+  struct RestorePath {
+    std::string path;
+    ~RestorePath() { ::setenv("PATH", path.c_str(), 1); }
+  } restore{path};
+  const std::vector<std::string> args = {
+      "--dispatch", "slurm",        "--threads-per-job", "1",
+      "--store",    pg.last_line(), "--results",         results.path().string()};
+  ServerProcess a(args), b(args);
+  auto ca = a.client();
+  auto cb = b.client();
+  std::vector<std::string> ids;
+  for (int i = 0; i < 6; ++i) ids.push_back(submit(i % 2 ? cb : ca, tiny_job(0.02)));
+  for (const std::string& id : ids) {
+    const json s = wait_final(ca, id, std::chrono::seconds(180));
+    EXPECT_EQ(s.at("status"), "successful") << s.dump() << a.log() << b.log();
+    EXPECT_EQ(s.at("attempts"), 1) << s.dump();
+    const json summary = json::parse(ca.get("/jobs/" + id + "/files/summary.json").body);
+    EXPECT_EQ(summary.at("status"), "completed");
+    EXPECT_EQ(summary.at("steps"), s.at("steps")) << summary.dump().substr(0, 300);
+  }
+  std::map<std::string, int> submissions;
+  for (const SlurmQueueEntry& e : queue()) ++submissions[e.name];
+  for (const std::string& id : ids) {
+    EXPECT_EQ(submissions["gearsph-" + id], 1) << id << "\n" << a.log() << b.log();
+  }
 }
 
 TEST_F(ScaleOutSlurm, DismissCancelsTheSlurmJob) {

@@ -896,11 +896,14 @@ class GatedStore : public JobStore {
   Recovery recover(int) override { return {}; }
   std::optional<JobRecord> claim_for_dispatch(const std::string&) override { return std::nullopt; }
   std::vector<JobRecord> dispatched() override { return {}; }
-  bool set_dispatch(const std::string&, JobStatus, const std::string&,
-                    const std::string&) override {
+  bool set_dispatch(const std::string&, JobStatus, const std::string&, const std::string&,
+                    const std::string&, double) override {
     return false;
   }
-  bool release_dispatch(const std::string&, const std::string&) override { return false; }
+  bool release_dispatch(const std::string&, const std::string&, const std::string&,
+                        double) override {
+    return false;
+  }
   bool start_dispatched(const std::string&, const std::string&, const std::string&) override {
     return false;
   }

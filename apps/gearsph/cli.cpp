@@ -40,6 +40,19 @@ bool Args::flag(const std::string& name) {
   return false;
 }
 
+double Args::grace_seconds(const std::string& name) {
+  const auto v = option(name);
+  if (!v) return 0.0;
+  try {
+    std::size_t used = 0;
+    const double s = std::stod(*v, &used);
+    if (used != v->size() || !(s >= 0) || s > 86400) throw std::invalid_argument("");
+    return s;
+  } catch (const std::exception&) {
+    throw std::invalid_argument("--" + name + " takes seconds (0 to 86400), not '" + *v + "'");
+  }
+}
+
 int Args::integer(const std::string& name, int fallback) {
   const auto v = option(name);
   if (!v) return fallback;

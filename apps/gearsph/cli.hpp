@@ -14,6 +14,8 @@ class Args {
   std::optional<std::string> option(const std::string& name);
   bool flag(const std::string& name);
   int integer(const std::string& name, int fallback);
+  // --name in seconds, 0 to a day; 0 if absent.
+  double grace_seconds(const std::string& name);
   // Remaining positional arguments; throws on a leftover --option.
   std::vector<std::string> positional() const;
 

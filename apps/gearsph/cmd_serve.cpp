@@ -72,6 +72,8 @@ int cmd_serve(Args& args) {
     throw std::invalid_argument("--no-local-workers and --dispatch slurm exclude each other");
   }
   c.lease_s = number_option(args, "lease", c.lease_s);
+  c.job_grace =
+      std::chrono::milliseconds(static_cast<long long>(1000 * args.grace_seconds("job-grace")));
   while (auto v = args.option("sbatch-arg")) c.sbatch_args.push_back(*v);
   if (auto v = args.option("slurm-gearsph")) c.gearsph_executable = *v;
   c.workers = args.integer("workers", 0);

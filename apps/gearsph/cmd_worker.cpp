@@ -6,6 +6,7 @@
 // check and go back to the queue.
 #include <signal.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
@@ -57,6 +58,7 @@ int cmd_worker(Args& args) {
   o.max_attempts = args.integer("max-attempts", o.max_attempts);
   const double lease_s = seconds_value(args, "lease", 30.0);
   const double poll_s = seconds_value(args, "poll", 0.5);
+  const double grace_s = args.grace_seconds("job-grace");
   if (!args.positional().empty()) throw std::invalid_argument("worker takes no file arguments");
   if (o.workers < 1 || o.threads_per_job < 0 || o.max_attempts < 1) {
     throw std::invalid_argument("--workers, --threads-per-job and --max-attempts are positive");
@@ -92,6 +94,21 @@ int cmd_worker(Args& args) {
   sigwait(&signals, &sig);
   std::fprintf(stderr, "%s: %s: stopping\n", o.log_name.c_str(),
                sig == SIGINT ? "SIGINT" : "SIGTERM");
+  if (grace_s > 0 && pool.running() > 0) {
+    // A warm shutdown: no new claims; the running jobs may finish (their
+    // heartbeat goes on) until the grace runs out or a second signal.
+    std::fprintf(stderr, "%s: letting %d running job(s) finish, for up to %.3g s\n",
+                 o.log_name.c_str(), pool.running(), grace_s);
+    pool.drain();
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(grace_s);
+    const timespec tick{0, 100'000'000};
+    while (pool.running() > 0 && std::chrono::steady_clock::now() < end) {
+      if (sigtimedwait(&signals, nullptr, &tick) > 0) {
+        std::fprintf(stderr, "%s: stopping the running jobs now\n", o.log_name.c_str());
+        break;
+      }
+    }
+  }
   pool.stop();
   std::fprintf(stderr, "%s: stopped\n", o.log_name.c_str());
   return 0;

@@ -88,6 +88,8 @@ usage:
                 line; or the environment's GEARSPH_STORE: no password in argv)
                 --results DIR  --no-local-workers  --lease S (30)  --dispatch local|slurm
                 --sbatch-arg A (repeatable)  --slurm-gearsph PATH
+      --job-grace S        on SIGTERM, running jobs may finish for S seconds (0)
+                           before they are re-queued; a second signal: at once
   gearsph submit JOB.json --server URL [--wait] [--out DIR] [--token-file F]
                  [--idempotency-key KEY] [--retry-for SECONDS]
       submit a job to a server (URL may hold a path: http://host/gearsph), print
@@ -96,9 +98,11 @@ usage:
       no second job; --retry-for: how long --wait keeps trying while the server
       is unreachable (300); exit 0 successful, 3 failed, 4 dismissed, 2 invalid
   gearsph worker --store URL|--store-file FILE --results DIR [--workers N] [--threads-per-job M]
-                 [--lease S] [--poll S] [--max-attempts N]
+                 [--lease S] [--poll S] [--max-attempts N] [--job-grace S]
       run jobs from a shared job store (docs/scale-out.md): claims held for
-      --lease seconds (30), the queue looked at every --poll seconds (0.5)
+      --lease seconds (30), the queue looked at every --poll seconds (0.5);
+      SIGTERM lets running jobs finish for --job-grace seconds (0), then
+      re-queues them (a second signal: at once)
   gearsph help
 
 exit status: 0 success, 1 error, 2 invalid job or usage, 3 run diverged, 4 cancelled,
