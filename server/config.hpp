@@ -67,6 +67,9 @@ struct ServerConfig {
   // SIGTERM: running jobs may finish for this long (a warm shutdown) before
   // they stop and go back to the queue; a second signal cuts it short.
   std::chrono::milliseconds job_grace{0};
+  // > 0: jobs that ended longer ago than this (and their files, studies
+  // left empty, idempotency keys, silent workers) are deleted, hourly.
+  double retention_s = 0;
   Limits limits;
   Timeouts timeouts;
   ImageProvider image_provider;                // empty: the images endpoint answers 501

@@ -152,6 +152,19 @@ struct HeldJob {
 // A fresh claim token: 128 random bits as hex.
 std::string new_claim_token();
 
+struct WorkerSeen {
+  std::string name;
+  double seen_ago_s = 0;
+  int running = 0;
+};
+
+struct Durations {
+  std::vector<double> bounds;
+  std::vector<std::int64_t> at_most;  // cumulative counts, one per bound
+  std::int64_t count = 0;
+  double sum_s = 0;
+};
+
 struct Recovery {
   std::vector<std::string> requeued;  // interrupted runs that will start again
   std::vector<std::string> failed;    // interrupted max_attempts times
@@ -246,6 +259,20 @@ class JobStore {
   // Drops the reference of a job that is finished or dismissed (after the
   // scheduler was told to cancel it).
   virtual void forget_dispatch(const std::string& id) = 0;
+
+  // Operations (/metrics, retention). A worker process's heartbeat, with
+  // the jobs it runs; the workers seen within `seconds`, with the seconds
+  // since each was seen.
+  virtual void worker_seen(const std::string& worker, int running) = 0;
+  virtual std::vector<WorkerSeen> workers_seen(double seconds) = 0;
+  // How many ended jobs (successful or failed) ran at most each of `bounds`
+  // seconds (cumulative, as a Prometheus histogram), their count and the
+  // sum of their wall times.
+  virtual Durations durations(const std::vector<double>& bounds) = 0;
+  // Deletes jobs that ended (successful, failed, dismissed) more than
+  // `seconds` ago, studies left without jobs and idempotency keys as old;
+  // returns the ids of the jobs deleted (their directories go too).
+  virtual std::vector<std::string> prune(double seconds) = 0;
 
   // Jobs that are queued or running, or were changed within the last
   // `seconds` (by the store's clock): what a server that does not run the

@@ -446,6 +446,61 @@ class SqlJobStore : public JobStore {
         {id});
   }
 
+  void worker_seen(const std::string& worker, int running) override {
+    db_->connect()->execute(
+        "INSERT INTO workers (name, started, seen, running) VALUES (?, " + now_ + ", " + now_ +
+            ", ?) ON CONFLICT (name) DO UPDATE SET seen = excluded.seen, running = "
+            "excluded.running",
+        {worker, std::int64_t{running}});
+  }
+
+  std::vector<WorkerSeen> workers_seen(double seconds) override {
+    // Ages from the store's clock: the machines' clocks need not agree.
+    std::vector<WorkerSeen> out;
+    for (const sql::Row& r : db_->connect()->query(
+             "SELECT name, " + seconds_since("seen") +
+                 ", running FROM workers WHERE seen >= " + d_.time_ago + " ORDER BY name",
+             {seconds})) {
+      out.push_back({r.text(0), r.real(1), static_cast<int>(r.int64(2))});
+    }
+    return out;
+  }
+
+  Durations durations(const std::vector<double>& bounds) override {
+    Durations d;
+    d.bounds = bounds;
+    std::string select = "SELECT COUNT(*), COALESCE(SUM(wall_s), 0)";
+    sql::Values params;
+    for (double b : bounds) {
+      select += ", COALESCE(SUM(CASE WHEN wall_s <= ? THEN 1 ELSE 0 END), 0)";
+      params.push_back(b);
+    }
+    const auto rows = db_->connect()->query(
+        select + " FROM jobs WHERE status IN ('successful', 'failed')", params);
+    const sql::Row& r = rows.front();
+    d.count = r.int64(0);
+    d.sum_s = r.real(1);
+    for (std::size_t i = 0; i < bounds.size(); ++i) d.at_most.push_back(r.int64(2 + i));
+    return d;
+  }
+
+  std::vector<std::string> prune(double seconds) override {
+    auto db = db_->connect();
+    sql::Transaction tx(*db);
+    const auto ids = ids_of(
+        db->query("DELETE FROM jobs WHERE status IN ('successful', 'failed', 'dismissed') AND "
+                  "COALESCE(finished, updated) < " +
+                      d_.time_ago + " RETURNING id",
+                  {seconds}));
+    db->execute("DELETE FROM studies WHERE created < " + d_.time_ago +
+                    " AND NOT EXISTS (SELECT 1 FROM jobs WHERE jobs.study_id = studies.id)",
+                {seconds});
+    db->execute("DELETE FROM idempotency_keys WHERE created < " + d_.time_ago, {seconds});
+    db->execute("DELETE FROM workers WHERE seen < " + d_.time_ago, {seconds});
+    tx.commit();
+    return ids;
+  }
+
   std::vector<JobRecord> active_or_changed_within(double seconds) override {
     return read_jobs(db_->connect()->query(
         kSelectJob + " WHERE status IN ('accepted', 'running') OR updated >= " + d_.time_ago +
@@ -525,6 +580,11 @@ class SqlJobStore : public JobStore {
             now_ + ", " + now_ + ")",
         {j.id, j.name, j.job_json, j.study_id.empty() ? sql::Value() : sql::Value(j.study_id),
          j.study_index, j.parameters_json, j.particles, j.steps, j.end_s});
+  }
+
+  std::string seconds_since(const std::string& column) const {
+    std::string s = d_.seconds_since;
+    return s.replace(s.find("{}"), 2, column);
   }
 
   std::unique_ptr<sql::Database> db_;

@@ -1,4 +1,5 @@
 #include "server/listener.hpp"
+#include "server/log.hpp"
 
 #include <cstdio>
 
@@ -49,7 +50,7 @@ void Listener::accept() {
         if (ec == net::error::operation_aborted || !self->acceptor_.is_open()) return;
         if (ec) {
           // Out of file descriptors, say: wait a moment rather than spin.
-          std::fprintf(stderr, "gearsph serve: accept: %s\n", ec.message().c_str());
+          log_line(LogLevel::warning, "gearsph serve: accept: %s\n", ec.message().c_str());
           self->retry_.expires_after(std::chrono::milliseconds(100));
           self->retry_.async_wait([self](boost::system::error_code wec) {
             if (!wec) self->accept();

@@ -1,5 +1,8 @@
 #include "server/router.hpp"
 
+#include "server/log.hpp"
+#include "server/metrics.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
@@ -31,6 +34,7 @@ const std::vector<Route>& route_table() {
       {verb::get, "/api", routes::api_definition},
       {verb::get, "/conformance", routes::conformance},
       {verb::get, "/health", routes::health},  // queue counts from a cache
+      {verb::get, "/metrics", routes::metrics, store},
       {verb::get, "/schema", routes::schema},
       {verb::get, "/processes", routes::processes},
       {verb::get, "/processes/{process}", routes::process},
@@ -478,8 +482,9 @@ Response Router::respond(Request& req, Match match) const {
     } catch (const StoreUnavailable& e) {
       // The request may well succeed once the store is back.
       services_.note_store_down(e.what());
-      std::fprintf(stderr, "gearsph serve: %s %s: %s\n",
-                   std::string(req.msg.method_string()).c_str(), req.path.c_str(), e.what());
+      ++counters().store_unavailable;
+      log_line(LogLevel::warning, "gearsph serve: %s %s: %s\n",
+               std::string(req.msg.method_string()).c_str(), req.path.c_str(), e.what());
       problem::Problem p;
       p.status = http::status::service_unavailable;
       p.type = problem::kStoreUnavailable;
@@ -492,8 +497,8 @@ Response Router::respond(Request& req, Match match) const {
       busy.set(http::field::retry_after, std::to_string(kStoreRetryAfterS));
       return busy;
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "gearsph serve: %s %s: %s\n",
-                   std::string(req.msg.method_string()).c_str(), req.path.c_str(), e.what());
+      log_line(LogLevel::error, "gearsph serve: %s %s: %s\n",
+               std::string(req.msg.method_string()).c_str(), req.path.c_str(), e.what());
       return problem::plain(http::status::internal_server_error,
                             "the server failed to answer this request", req.path);
     }

@@ -11,6 +11,7 @@ Response landing(Services&, Request&);
 Response api_definition(Services&, Request&);  // GET /api: the OpenAPI document
 Response conformance(Services&, Request&);
 Response health(Services&, Request&);
+Response metrics(Services&, Request&);
 Response schema(Services&, Request&);
 Response processes(Services&, Request&);
 Response process(Services&, Request&);

@@ -1,6 +1,8 @@
 #include "server/server.hpp"
+#include "server/log.hpp"
 
 #include "server/attempt_dirs.hpp"
+#include "server/metrics.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -85,12 +87,13 @@ Server::Server(ServerConfig config)
   }
   const Recovery r = store_->recover(config_.max_attempts);
   for (const std::string& id : r.requeued) {
-    std::fprintf(stderr, "gearsph serve: job %s was interrupted; it is queued again\n", id.c_str());
+    log_line(LogLevel::info, "gearsph serve: job %s was interrupted; it is queued again\n",
+             id.c_str());
   }
   for (const std::string& id : r.failed) {
     discard_attempts(results_dir_of(config_), id);
-    std::fprintf(stderr, "gearsph serve: job %s was interrupted %d times; it failed\n", id.c_str(),
-                 config_.max_attempts);
+    log_line(LogLevel::warning, "gearsph serve: job %s was interrupted %d times; it failed\n",
+             id.c_str(), config_.max_attempts);
   }
   workers_ = make_dispatcher(config_, *store_, hub_);
   if (shared_store(config_) || !config_.local_workers || config_.dispatch == "slurm") {
@@ -127,8 +130,32 @@ void Server::refresh_counts_every_second() {
   counts_timer_.async_wait([this](boost::system::error_code ec) {
     if (ec) return;
     net::post(store_pool_, [this] { services_->refresh_queue_counts(); });
+    // The retention: five seconds after the start, then hourly.
+    if (config_.retention_s > 0 && ++ticks_ % 3600 == 5) {
+      net::post(store_pool_, [this] { prune(); });
+    }
     refresh_counts_every_second();
   });
+}
+
+void Server::prune() {
+  try {
+    const std::vector<std::string> gone = store_->prune(config_.retention_s);
+    const std::filesystem::path jobs_dir = results_dir_of(config_);
+    for (const std::string& id : gone) {
+      std::error_code ec;
+      std::filesystem::remove_all(jobs_dir / id, ec);
+      discard_attempts(jobs_dir, id);
+      services_->images.drop_job(id);
+    }
+    counters().jobs_pruned += static_cast<std::int64_t>(gone.size());
+    if (!gone.empty()) {
+      log_line(LogLevel::info, "gearsph serve: deleted %zu job(s) that ended over %.3g days ago\n",
+               gone.size(), config_.retention_s / 86400);
+    }
+  } catch (const std::exception& e) {
+    log_line(LogLevel::warning, "gearsph serve: pruning old jobs failed: %s\n", e.what());
+  }
 }
 
 void Server::stop() {
@@ -149,8 +176,8 @@ void Server::wait_for_signal() {
       again = stop_requested_;
       if (again) hurry_ = true;
     }
-    std::fprintf(stderr, "gearsph serve: %s: %s\n", name,
-                 again ? "stopping the running jobs now" : "stopping");
+    log_line(LogLevel::info, "gearsph serve: %s: %s\n", name,
+             again ? "stopping the running jobs now" : "stopping");
     stop();
     wait_for_signal();  // a second signal cuts the warm shutdown short
   });
@@ -173,8 +200,8 @@ void Server::run() {
   // the API goes on answering about them, until the grace runs out or a
   // second signal.
   if (config_.job_grace.count() > 0 && workers_->running() > 0) {
-    std::fprintf(stderr, "gearsph serve: letting %d running job(s) finish, for up to %.3g s\n",
-                 workers_->running(), config_.job_grace.count() / 1000.0);
+    log_line(LogLevel::info, "gearsph serve: letting %d running job(s) finish, for up to %.3g s\n",
+             workers_->running(), config_.job_grace.count() / 1000.0);
     workers_->drain();
     const auto end = std::chrono::steady_clock::now() + config_.job_grace;
     std::unique_lock<std::mutex> lock(mutex_);
@@ -199,7 +226,7 @@ void Server::run() {
   for (std::thread& t : io) t.join();
   handler_pool_.join();
   store_pool_.join();
-  std::fprintf(stderr, "gearsph serve: stopped\n");
+  log_line(LogLevel::info, "gearsph serve: stopped\n");
 }
 
 }  // namespace gearsph::server

@@ -38,6 +38,9 @@ class Server {
   void run();
   void stop();  // thread-safe
 
+  // The retention (ServerConfig::retention_s), once; public for tests.
+  void prune();
+
  private:
   void wait_for_signal();
   void refresh_counts_every_second();
@@ -59,7 +62,9 @@ class Server {
   std::mutex mutex_;
   std::condition_variable stop_wake_;
   bool stop_requested_ = false;
-  bool hurry_ = false;  // a second signal: no more grace for running jobs
+  bool hurry_ = false;
+  std::uint64_t ticks_ = 0;  // of the counts' refresh, one a second  // a second signal: no more
+                             // grace for running jobs
 };
 
 }  // namespace gearsph::server

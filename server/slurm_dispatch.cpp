@@ -1,4 +1,5 @@
 #include "server/slurm_dispatch.hpp"
+#include "server/log.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -316,7 +317,7 @@ void SlurmDispatcher::loop() {
     try {
       pass();
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "gearsph serve: slurm: %s\n", e.what());
+      log_line(LogLevel::warning, "gearsph serve: slurm: %s\n", e.what());
     }
     std::unique_lock<std::mutex> lock(mutex_);
     wake_.wait_for(lock, options_.poll_interval, [this] { return stop_ || poked_; });
@@ -360,8 +361,8 @@ bool SlurmDispatcher::submit(const JobRecord& job) {
   const auto slurm_id = r.status == 0 ? parse_sbatch_parsable(r.out) : std::nullopt;
   if (!slurm_id) {
     const std::string why = std::string(trim(r.err.empty() ? r.out : r.err));
-    std::fprintf(stderr, "gearsph serve: slurm: sbatch refused job %s: %s\n", job.id.c_str(),
-                 why.c_str());
+    log_line(LogLevel::warning, "gearsph serve: slurm: sbatch refused job %s: %s\n", job.id.c_str(),
+             why.c_str());
     store_.release_dispatch(job.id, job.dispatch_ref,
                             "queued; sbatch failed (" + why + "), trying again");
     return false;
@@ -377,16 +378,16 @@ bool SlurmDispatcher::submit(const JobRecord& job) {
       // Another node took the job over (this one was frozen past
       // kPlaceholderGoneAfterS): its Slurm job is the job's; this one goes.
       const CommandResult c = run_command({"scancel", *slurm_id});
-      std::fprintf(stderr,
-                   "gearsph serve: job %s: another node took it over while sbatch ran; the Slurm "
-                   "job %s made here %s\n",
-                   job.id.c_str(), slurm_id->c_str(),
-                   c.status == 0 ? "was cancelled" : "could not be cancelled");
+      log_line(LogLevel::warning,
+               "gearsph serve: job %s: another node took it over while sbatch ran; the Slurm "
+               "job %s made here %s\n",
+               job.id.c_str(), slurm_id->c_str(),
+               c.status == 0 ? "was cancelled" : "could not be cancelled");
       return true;
     }
   }
-  std::fprintf(stderr, "gearsph serve: job %s submitted to Slurm as job %s\n", job.id.c_str(),
-               slurm_id->c_str());
+  log_line(LogLevel::info, "gearsph serve: job %s submitted to Slurm as job %s\n", job.id.c_str(),
+           slurm_id->c_str());
   return true;
 }
 
@@ -433,12 +434,12 @@ void SlurmDispatcher::track() {
       if (phase != SlurmPhase::ended) {
         const CommandResult c = run_command({"scancel", slurm_id});
         if (c.status != 0) {
-          std::fprintf(stderr, "gearsph serve: slurm: scancel %s: %s\n", slurm_id.c_str(),
-                       std::string(trim(c.err)).c_str());
+          log_line(LogLevel::warning, "gearsph serve: slurm: scancel %s: %s\n", slurm_id.c_str(),
+                   std::string(trim(c.err)).c_str());
           continue;
         }
-        std::fprintf(stderr, "gearsph serve: job %s dismissed; Slurm job %s cancelled\n",
-                     job.id.c_str(), slurm_id.c_str());
+        log_line(LogLevel::info, "gearsph serve: job %s dismissed; Slurm job %s cancelled\n",
+                 job.id.c_str(), slurm_id.c_str());
       }
       ProgressUpdate last;
       last.id = job.id;
@@ -553,8 +554,8 @@ void SlurmDispatcher::conclude(const JobRecord& job, const std::string& slurm_id
   }
   if (job.status == JobStatus::accepted) store_.start_dispatched(job.id, job.dispatch_ref, message);
   if (store_.finish(job.id, outcome, message, last)) {
-    std::fprintf(stderr, "gearsph serve: job %s %s: %s\n", job.id.c_str(),
-                 std::string(to_string(outcome)).c_str(), message.c_str());
+    log_line(LogLevel::info, "gearsph serve: job %s %s: %s\n", job.id.c_str(),
+             std::string(to_string(outcome)).c_str(), message.c_str());
   }
   store_.forget_dispatch(job.id);
 }

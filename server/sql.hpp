@@ -71,6 +71,7 @@ struct Dialect {
   std::string lease_clock;     // now, in the type of the lease_until column
   std::string lease_in;        // lease_clock plus `?` seconds
   std::string time_ago;        // the time `?` seconds ago, as text
+  std::string seconds_since;   // seconds from the text time in column `{}` to now
   std::string skip_locked;     // after a subquery that picks one row to claim
   std::string lock_row;        // after a SELECT of a row about to be changed
   std::string migration_lock;  // run first in the migration's transaction, or ""

@@ -84,6 +84,17 @@ const char* const kMigration2 = R"sql(
 ALTER TABLE jobs ADD COLUMN claim TEXT;
 )sql";
 
+// 3: worker processes' heartbeats, for the operator (/metrics).
+const char* const kMigration3 = R"sql(
+CREATE TABLE workers (
+  name    TEXT PRIMARY KEY,
+  started TEXT NOT NULL,
+  seen    TEXT NOT NULL,
+  running INTEGER NOT NULL DEFAULT 0
+);
+CREATE INDEX jobs_by_finished ON jobs(finished);
+)sql";
+
 // ISO 8601 UTC with milliseconds, as SQLite's strftime writes them.
 #define GEARSPH_ISO(t) "to_char((" t ") AT TIME ZONE 'UTC', 'YYYY-MM-DD\"T\"HH24:MI:SS.MS\"Z\"')"
 
@@ -94,11 +105,12 @@ sql::Dialect postgres_dialect() {
       .lease_clock = "clock_timestamp()",
       .lease_in = "clock_timestamp() + ?::float8 * interval '1 second'",
       .time_ago = GEARSPH_ISO("clock_timestamp() - ?::float8 * interval '1 second'"),
+      .seconds_since = "EXTRACT(EPOCH FROM clock_timestamp() - ({})::timestamptz)::float8",
       // A job another worker is claiming right now is passed over, not waited for.
       .skip_locked = " FOR UPDATE SKIP LOCKED",
       .lock_row = " FOR UPDATE",
       .migration_lock = "SELECT pg_advisory_xact_lock(7146301)",  // any fixed number
-      .migrations = {kMigration1, kMigration2},
+      .migrations = {kMigration1, kMigration2, kMigration3},
   };
 }
 

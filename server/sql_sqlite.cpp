@@ -75,6 +75,17 @@ const char* const kMigration3 = R"sql(
 ALTER TABLE jobs ADD COLUMN claim TEXT;
 )sql";
 
+// 4: worker processes' heartbeats, for the operator (/metrics).
+const char* const kMigration4 = R"sql(
+CREATE TABLE workers (
+  name    TEXT PRIMARY KEY,
+  started TEXT NOT NULL,
+  seen    TEXT NOT NULL,
+  running INTEGER NOT NULL DEFAULT 0
+);
+CREATE INDEX jobs_by_finished ON jobs(finished);
+)sql";
+
 // Seconds since 1970 on SQLite's clock: leases are REAL.
 #define GEARSPH_EPOCH "((julianday('now') - 2440587.5) * 86400.0)"
 
@@ -85,10 +96,11 @@ sql::Dialect sqlite_dialect() {
       .lease_clock = GEARSPH_EPOCH,
       .lease_in = GEARSPH_EPOCH " + ?",
       .time_ago = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now', printf('-%.3f seconds', ?))",
+      .seconds_since = "((julianday('now') - julianday({})) * 86400.0)",
       .skip_locked = "",  // one writer at a time: the claim's UPDATE is atomic as it is
       .lock_row = "",     // BEGIN IMMEDIATE holds the write lock already
       .migration_lock = "",
-      .migrations = {kMigration1, kMigration2, kMigration3},
+      .migrations = {kMigration1, kMigration2, kMigration3, kMigration4},
   };
 }
 

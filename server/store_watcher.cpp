@@ -1,6 +1,8 @@
 #include "server/store_watcher.hpp"
+#include "server/log.hpp"
 
 #include "server/attempt_dirs.hpp"
+#include "server/metrics.hpp"
 
 #include <cstdio>
 #include <optional>
@@ -26,7 +28,7 @@ void StoreWatcher::start() {
   try {
     poll(std::chrono::duration<double>(options_.interval).count() + 5.0);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "gearsph serve: watching the job store failed: %s\n", e.what());
+    log_line(LogLevel::warning, "gearsph serve: watching the job store failed: %s\n", e.what());
   }
   thread_ = std::thread([this] { loop(); });
 }
@@ -56,24 +58,26 @@ void StoreWatcher::loop() {
     try {
       if (options_.reclaim) {
         const Recovery r = store_.reclaim_expired(options_.max_attempts);
+        counters().lease_expiries += static_cast<std::int64_t>(r.requeued.size());
+        counters().lease_failures += static_cast<std::int64_t>(r.failed.size());
         for (const std::string& id : r.requeued) {
-          std::fprintf(stderr,
-                       "gearsph serve: job %s: its worker stopped renewing its lease; it is "
-                       "queued again\n",
-                       id.c_str());
+          log_line(LogLevel::warning,
+                   "gearsph serve: job %s: its worker stopped renewing its lease; it is "
+                   "queued again\n",
+                   id.c_str());
         }
         for (const std::string& id : r.failed) {
           discard_attempts(options_.jobs_dir, id);
-          std::fprintf(stderr,
-                       "gearsph serve: job %s: its worker stopped renewing its lease; "
-                       "it failed\n",
-                       id.c_str());
+          log_line(LogLevel::warning,
+                   "gearsph serve: job %s: its worker stopped renewing its lease; "
+                   "it failed\n",
+                   id.c_str());
         }
       }
       poll(window);
       last_ok = now;
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "gearsph serve: watching the job store failed: %s\n", e.what());
+      log_line(LogLevel::warning, "gearsph serve: watching the job store failed: %s\n", e.what());
     }
   }
 }

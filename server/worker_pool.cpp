@@ -4,6 +4,8 @@
 
 #include "server/attempt_dirs.hpp"
 #include "server/documents.hpp"
+#include "server/log.hpp"
+#include "server/metrics.hpp"
 #include "solver/core/setup_progress.hpp"
 #include "solver/job/job.hpp"
 #include "solver/run/execute.hpp"
@@ -161,6 +163,9 @@ void WorkerPool::release_cores(int& held) {
 }
 
 void WorkerPool::work() {
+  // Claims that failed in a row (the store away): the pause before the next
+  // try doubles up to 10 s, and the log says so at the 1st, 2nd, 4th, ...
+  int failures = 0;
   while (!stopping_) {
     std::uint64_t seen = 0;
     int held = 0;  // cores of the budget this worker holds
@@ -177,11 +182,24 @@ void WorkerPool::work() {
       seen = generation_;
     }
     std::optional<JobRecord> job;
+    auto pause = options_.poll_interval;
     try {
       if (options_.holder.lease_s > 0) reclaim();
       if (!draining_) job = store_.claim(options_.holder);
+      if (failures > 0) {
+        log_line(LogLevel::info, "%s: the job store answers again, after %d failed tries\n",
+                 options_.log_name.c_str(), failures);
+      }
+      failures = 0;
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "%s: claiming a job failed: %s\n", options_.log_name.c_str(), e.what());
+      ++failures;
+      ++counters().store_retries;
+      if ((failures & (failures - 1)) == 0) {
+        log_line(LogLevel::warning, "%s: claiming a job failed (%d in a row): %s\n",
+                 options_.log_name.c_str(), failures, e.what());
+      }
+      pause = std::min<std::chrono::milliseconds>(
+          std::chrono::milliseconds(10'000), options_.poll_interval * (1 << std::min(failures, 6)));
     }
     if (job) {
       if (stopping_) {
@@ -196,16 +214,15 @@ void WorkerPool::work() {
         // The store failed while recording the outcome; the job stays
         // running in the store and is re-queued at the next start (or when
         // its lease runs out).
-        std::fprintf(stderr, "%s: job %s: recording its outcome failed: %s\n",
-                     options_.log_name.c_str(), job->id.c_str(), e.what());
+        log_line(LogLevel::warning, "%s: job %s: recording its outcome failed: %s\n",
+                 options_.log_name.c_str(), job->id.c_str(), e.what());
       }
       release_cores(held);
       continue;
     }
     release_cores(held);
     std::unique_lock<std::mutex> lock(mutex_);
-    wake_.wait_for(lock, options_.poll_interval,
-                   [&] { return stopping_.load() || generation_ != seen; });
+    wake_.wait_for(lock, pause, [&] { return stopping_.load() || generation_ != seen; });
   }
 }
 
@@ -247,8 +264,8 @@ void WorkerPool::run(const JobRecord& job, int& held) {
       pool.running_.erase(id);
     }
   } unregister{*this, job.id};
-  std::fprintf(stderr, "%s: job %s running (%s, attempt %d)\n", options_.log_name.c_str(),
-               job.id.c_str(), job.name.c_str(), job.attempts);
+  log_line(LogLevel::info, "%s: job %s running (%s, attempt %d)\n", options_.log_name.c_str(),
+           job.id.c_str(), job.name.c_str(), job.attempts);
   publish_status(job.id);
 
   // This claim's own directory: published as the job's only once its
@@ -316,6 +333,7 @@ void WorkerPool::run(const JobRecord& job, int& held) {
   bool published = false;
   auto record_outcome = [&] {
     if (cancelled && !rj->dismissed && !rj->lost && stopping_) {
+      ++counters().requeues;
       store_.requeue(job.id,
                      "re-queued: the server was stopped while this job ran (at " + where +
                          "); it starts again from the beginning when the server is back",
@@ -324,10 +342,11 @@ void WorkerPool::run(const JobRecord& job, int& held) {
       if (!store_.close_dismissed(job.id, "dismissed while running; the run stopped at " + where,
                                   last) &&
           rj->lost) {
-        std::fprintf(stderr,
-                     "%s: job %s stopped at %s: its claim was lost (its lease ran out and another "
-                     "worker claimed it, or it ended); this run's files were discarded\n",
-                     log, job.id.c_str(), where.c_str());
+        ++counters().claims_lost;
+        log_line(LogLevel::warning,
+                 "%s: job %s stopped at %s: its claim was lost (its lease ran out and another "
+                 "worker claimed it, or it ended); this run's files were discarded\n",
+                 log, job.id.c_str(), where.c_str());
       }
     } else if (store_.finish(job.id, outcome, message, last, job.claim)) {
       published = true;
@@ -336,11 +355,12 @@ void WorkerPool::run(const JobRecord& job, int& held) {
                    "dismissed while running; the run had just " +
                        std::string(outcome == JobStatus::successful ? "completed" : "failed"),
                    last)) {
-      std::fprintf(stderr,
-                   "%s: job %s: this run %s, but its claim was lost meanwhile (another worker "
-                   "claimed the job after the lease ran out); the other run's outcome stands and "
-                   "this run's files were discarded\n",
-                   log, job.id.c_str(), outcome == JobStatus::successful ? "completed" : "failed");
+      ++counters().claims_lost;
+      log_line(LogLevel::warning,
+               "%s: job %s: this run %s, but its claim was lost meanwhile (another worker "
+               "claimed the job after the lease ran out); the other run's outcome stands and "
+               "this run's files were discarded\n",
+               log, job.id.c_str(), outcome == JobStatus::successful ? "completed" : "failed");
     }
   };
   // A shared store may be down: a finished run is kept until its outcome is
@@ -353,14 +373,15 @@ void WorkerPool::run(const JobRecord& job, int& held) {
       break;
     } catch (const std::exception& e) {
       if (options_.holder.lease_s <= 0 || stopping_) {
-        std::fprintf(stderr,
-                     "%s: job %s: its outcome could not be recorded (%s); its files stay in %s "
-                     "and the job runs again once its lease has run out\n",
-                     log, job.id.c_str(), e.what(), dir.string().c_str());
+        log_line(LogLevel::warning,
+                 "%s: job %s: its outcome could not be recorded (%s); its files stay in %s "
+                 "and the job runs again once its lease has run out\n",
+                 log, job.id.c_str(), e.what(), dir.string().c_str());
         throw;
       }
-      std::fprintf(stderr, "%s: job %s: recording its outcome failed (%s); trying again\n", log,
-                   job.id.c_str(), e.what());
+      ++counters().store_retries;
+      log_line(LogLevel::warning, "%s: job %s: recording its outcome failed (%s); trying again\n",
+               log, job.id.c_str(), e.what());
       std::this_thread::sleep_for(pause);
     }
   }
@@ -369,8 +390,8 @@ void WorkerPool::run(const JobRecord& job, int& held) {
       publish_attempt(options_.jobs_dir, job.id, job.claim);
     } catch (const std::exception& e) {
       // Recorded but not renamed: the API publishes it when first asked.
-      std::fprintf(stderr, "%s: job %s: publishing its files failed: %s\n", log, job.id.c_str(),
-                   e.what());
+      log_line(LogLevel::warning, "%s: job %s: publishing its files failed: %s\n", log,
+               job.id.c_str(), e.what());
     }
   } else {
     std::error_code ec;
@@ -382,9 +403,9 @@ void WorkerPool::run(const JobRecord& job, int& held) {
     std::error_code ec;
     std::filesystem::remove_all(options_.jobs_dir / job.id, ec);
   }
-  std::fprintf(stderr, "%s: job %s %s: %s\n", log, job.id.c_str(),
-               record ? std::string(to_string(record->status)).c_str() : "?",
-               record ? record->message.c_str() : "");
+  log_line(LogLevel::info, "%s: job %s %s: %s\n", log, job.id.c_str(),
+           record ? std::string(to_string(record->status)).c_str() : "?",
+           record ? record->message.c_str() : "");
   publish_status(job.id);
 }
 
@@ -413,7 +434,8 @@ void WorkerPool::flush() {
     // another process sharing it): stop their runs.
     for (const std::string& id : store_.save_progress(batch)) cancel(id);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: storing progress failed: %s\n", options_.log_name.c_str(), e.what());
+    log_line(LogLevel::warning, "%s: storing progress failed: %s\n", options_.log_name.c_str(),
+             e.what());
   }
 }
 
@@ -425,6 +447,9 @@ void WorkerPool::heartbeat() {
     for (const auto& [id, job] : running_) held.push_back({id, job->claim});
   }
   try {
+    if (options_.workers > 0) {  // an API node without workers is no worker
+      store_.worker_seen(options_.holder.worker, static_cast<int>(held.size()));
+    }
     const std::vector<std::string> lost = store_.renew(options_.holder, held);
     std::lock_guard<std::mutex> lock(mutex_);
     for (const std::string& id : lost) {
@@ -436,8 +461,8 @@ void WorkerPool::heartbeat() {
     // another worker, but only the claim that holds at the finish publishes
     // (attempt_dirs.hpp), and a run the store comes back to unclaimed keeps
     // its work.
-    std::fprintf(stderr, "%s: renewing the leases failed: %s\n", options_.log_name.c_str(),
-                 e.what());
+    log_line(LogLevel::warning, "%s: renewing the leases failed: %s\n", options_.log_name.c_str(),
+             e.what());
   }
 }
 
@@ -450,14 +475,18 @@ void WorkerPool::reclaim() {
     last_reclaim_ = now;
   }
   const Recovery r = store_.reclaim_expired(options_.max_attempts);
+  counters().lease_expiries += static_cast<std::int64_t>(r.requeued.size());
+  counters().lease_failures += static_cast<std::int64_t>(r.failed.size());
   for (const std::string& id : r.failed) discard_attempts(options_.jobs_dir, id);
   for (const std::string& id : r.requeued) {
-    std::fprintf(stderr, "%s: job %s: its worker stopped renewing its lease; it is queued again\n",
-                 options_.log_name.c_str(), id.c_str());
+    log_line(LogLevel::warning,
+             "%s: job %s: its worker stopped renewing its lease; it is queued again\n",
+             options_.log_name.c_str(), id.c_str());
   }
   for (const std::string& id : r.failed) {
-    std::fprintf(stderr, "%s: job %s: its worker stopped renewing its lease %d times; it failed\n",
-                 options_.log_name.c_str(), id.c_str(), options_.max_attempts);
+    log_line(LogLevel::warning,
+             "%s: job %s: its worker stopped renewing its lease %d times; it failed\n",
+             options_.log_name.c_str(), id.c_str(), options_.max_attempts);
   }
 }
 

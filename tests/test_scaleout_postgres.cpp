@@ -438,6 +438,22 @@ TEST_F(ScaleOutPostgres, TheStoreDownAnswers503WithRetryAfter) {
   ServerProcess api(api_args());
   auto c = api.client();
   const std::string id = submit(c, tiny_job(0.01));  // no worker: it stays queued
+  {
+    // A worker's heartbeat reaches /metrics through the store (it takes the
+    // job, which is of no matter here).
+    auto w = worker(0);
+    const auto seen_by = Clock::now() + std::chrono::seconds(20);
+    std::string m;
+    do {
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      m = c.get("/metrics").body;
+    } while (m.find("gearsph_workers_seen 1") == std::string::npos && Clock::now() < seen_by);
+    EXPECT_NE(m.find("gearsph_workers_seen 1"), std::string::npos) << m;
+    EXPECT_NE(m.find("gearsph_worker_heartbeat_age_seconds{worker=\"" + w->name() + "\"}"),
+              std::string::npos)
+        << m;
+    wait_final(c, id);
+  }
   ASSERT_EQ(pg_->run("down"), 0);
   const std::vector<std::pair<std::string, std::string>> requests = {
       {"GET", "/jobs"},
@@ -473,6 +489,10 @@ TEST_F(ScaleOutPostgres, TheStoreDownAnswers503WithRetryAfter) {
   } while (h.status != 503 && Clock::now() < deadline);
   ASSERT_EQ(h.status, 503u) << h.body;
   EXPECT_EQ(h.header("retry-after"), "5");
+  // /metrics answers all the same: that is when it is needed.
+  const ClientResponse m = c.get("/metrics");
+  EXPECT_EQ(m.status, 200u);
+  EXPECT_NE(m.body.find("gearsph_store_up 0"), std::string::npos) << m.body;
   const json health = h.json();
   EXPECT_EQ(health.at("status"), "degraded");
   EXPECT_EQ(health.at("dependencies").at("store").at("status"), "down") << h.body;
@@ -486,7 +506,7 @@ TEST_F(ScaleOutPostgres, TheStoreDownAnswers503WithRetryAfter) {
   } while (h.status != 200 && Clock::now() < back);
   EXPECT_EQ(h.status, 200u) << h.body;
   EXPECT_EQ(h.json().at("dependencies").at("store").at("status"), "up");
-  EXPECT_EQ(c.get("/jobs/" + id).json().at("status"), "accepted");
+  EXPECT_EQ(c.get("/jobs/" + id).json().at("status"), "successful");
 }
 
 // A run that finishes while the database is down (longer than its lease) is

@@ -911,6 +911,10 @@ class GatedStore : public JobStore {
     return false;
   }
   void forget_dispatch(const std::string&) override {}
+  void worker_seen(const std::string&, int) override {}
+  std::vector<WorkerSeen> workers_seen(double) override { return {}; }
+  Durations durations(const std::vector<double>&) override { return {}; }
+  std::vector<std::string> prune(double) override { return {}; }
   std::vector<JobRecord> active_or_changed_within(double) override { return {}; }
 
  private:

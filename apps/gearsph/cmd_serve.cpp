@@ -7,6 +7,7 @@
 
 #include "apps/gearsph/cli.hpp"
 #include "apps/gearsph/serve_images.hpp"
+#include "server/log.hpp"
 #include "server/router.hpp"
 #ifdef GEARSPH_WITH_FE
 #include "fe/external_program.hpp"
@@ -59,7 +60,7 @@ int cmd_serve(Args& args) {
     c.store = server::store_from_options(args.option("store"), args.option("store-file"),
                                          std::getenv("GEARSPH_STORE"), warnings);
     for (const std::string& w : warnings)
-      std::fprintf(stderr, "gearsph serve: warning: %s\n", w.c_str());
+      server::log_line(server::LogLevel::warning, "gearsph serve: %s\n", w.c_str());
     if (!c.store.empty()) server::parse_store_location(c.store);  // refused here, before anything
   }
   if (auto v = args.option("results")) c.results_dir = *v;
@@ -72,6 +73,17 @@ int cmd_serve(Args& args) {
     throw std::invalid_argument("--no-local-workers and --dispatch slurm exclude each other");
   }
   c.lease_s = number_option(args, "lease", c.lease_s);
+  if (auto v = args.option("retention-days")) {
+    try {
+      std::size_t used = 0;
+      const double days = std::stod(*v, &used);
+      if (used != v->size() || !(days > 0) || days > 36500) throw std::invalid_argument("");
+      c.retention_s = days * 86400;
+    } catch (const std::exception&) {
+      throw std::invalid_argument("--retention-days takes a number of days (> 0), not '" + *v +
+                                  "'");
+    }
+  }
   c.job_grace =
       std::chrono::milliseconds(static_cast<long long>(1000 * args.grace_seconds("job-grace")));
   while (auto v = args.option("sbatch-arg")) c.sbatch_args.push_back(*v);
@@ -131,10 +143,10 @@ int cmd_serve(Args& args) {
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   server::resolve_defaults(c, cores);
   if (c.core_budget == 0 && c.workers * c.threads_per_job > cores) {
-    std::fprintf(stderr,
-                 "gearsph serve: warning: %d workers x %d threads = %d threads on %d cores; jobs "
-                 "will compete for the cores\n",
-                 c.workers, c.threads_per_job, c.workers * c.threads_per_job, cores);
+    server::log_line(server::LogLevel::warning,
+                     "gearsph serve: %d workers x %d threads = %d threads on %d cores; jobs "
+                     "will compete for the cores\n",
+                     c.workers, c.threads_per_job, c.workers * c.threads_per_job, cores);
   }
   // Without this, writing to a client that left would end the process.
   std::signal(SIGPIPE, SIG_IGN);

@@ -16,6 +16,7 @@
 #include "server/config.hpp"
 #include "server/event_hub.hpp"
 #include "server/job_store.hpp"
+#include "server/log.hpp"
 #include "server/store_location.hpp"
 #include "server/worker_pool.hpp"
 
@@ -49,7 +50,7 @@ int cmd_worker(Args& args) {
         "GEARSPH_STORE)");
   }
   for (const std::string& w : warnings) {
-    std::fprintf(stderr, "gearsph worker: warning: %s\n", w.c_str());
+    server::log_line(server::LogLevel::warning, "gearsph worker: %s\n", w.c_str());
   }
   server::parse_store_location(store_location);  // refused here, before anything
   server::WorkerPoolOptions o;
@@ -92,25 +93,27 @@ int cmd_worker(Args& args) {
   std::fflush(stdout);
   int sig = 0;
   sigwait(&signals, &sig);
-  std::fprintf(stderr, "%s: %s: stopping\n", o.log_name.c_str(),
-               sig == SIGINT ? "SIGINT" : "SIGTERM");
+  server::log_line(server::LogLevel::info, "%s: %s: stopping\n", o.log_name.c_str(),
+                   sig == SIGINT ? "SIGINT" : "SIGTERM");
   if (grace_s > 0 && pool.running() > 0) {
     // A warm shutdown: no new claims; the running jobs may finish (their
     // heartbeat goes on) until the grace runs out or a second signal.
-    std::fprintf(stderr, "%s: letting %d running job(s) finish, for up to %.3g s\n",
-                 o.log_name.c_str(), pool.running(), grace_s);
+    server::log_line(server::LogLevel::info,
+                     "%s: letting %d running job(s) finish, for up to %.3g s\n", o.log_name.c_str(),
+                     pool.running(), grace_s);
     pool.drain();
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(grace_s);
     const timespec tick{0, 100'000'000};
     while (pool.running() > 0 && std::chrono::steady_clock::now() < end) {
       if (sigtimedwait(&signals, nullptr, &tick) > 0) {
-        std::fprintf(stderr, "%s: stopping the running jobs now\n", o.log_name.c_str());
+        server::log_line(server::LogLevel::info, "%s: stopping the running jobs now\n",
+                         o.log_name.c_str());
         break;
       }
     }
   }
   pool.stop();
-  std::fprintf(stderr, "%s: stopped\n", o.log_name.c_str());
+  server::log_line(server::LogLevel::info, "%s: stopped\n", o.log_name.c_str());
   return 0;
 }
 

@@ -90,6 +90,8 @@ usage:
                 --sbatch-arg A (repeatable)  --slurm-gearsph PATH
       --job-grace S        on SIGTERM, running jobs may finish for S seconds (0)
                            before they are re-queued; a second signal: at once
+      --retention-days D   delete jobs (and their files) that ended D days ago,
+                           hourly (default: keep everything)
   gearsph submit JOB.json --server URL [--wait] [--out DIR] [--token-file F]
                  [--idempotency-key KEY] [--retry-for SECONDS]
       submit a job to a server (URL may hold a path: http://host/gearsph), print
