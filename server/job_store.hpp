@@ -20,6 +20,7 @@
 // recovered at its start-up (recover). A job handed to an outside
 // scheduler (Slurm) carries that scheduler's reference (dispatch_ref)
 // while it is tracked.
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -273,6 +274,14 @@ class JobStore {
   // `seconds` ago, studies left without jobs and idempotency keys as old;
   // returns the ids of the jobs deleted (their directories go too).
   virtual std::vector<std::string> prune(double seconds) = 0;
+
+  // Whether the store announces changes (PostgreSQL); then
+  // wait_for_change waits up to `timeout` for one (true) or none (false).
+  virtual bool notifies() const { return false; }
+  virtual bool wait_for_change(std::chrono::milliseconds) { return false; }
+  // Jobs changed within the last `seconds` (store clock), without their job
+  // documents: what a watcher needs after its first look.
+  virtual std::vector<JobRecord> changed_within(double seconds) = 0;
 
   // Jobs that are queued or running, or were changed within the last
   // `seconds` (by the store's clock): what a server that does not run the

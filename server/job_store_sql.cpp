@@ -248,8 +248,10 @@ class SqlJobStore : public JobStore {
     }
     const auto kept_rows = db_->connect()->query(
         "UPDATE jobs SET lease_until = " + d_.lease_in +
-            ", message = CASE WHEN status = 'accepted' THEN 'running (its worker is back after "
-            "its lease ran out; nobody had claimed it since)' ELSE message END, started = "
+            ", updated = CASE WHEN status = 'accepted' THEN " + now_ +
+            " ELSE updated END, message = CASE WHEN status = 'accepted' THEN 'running (its worker "
+            "is back after its lease ran out; nobody had claimed it since)' ELSE message END, "
+            "started = "
             "COALESCE(started, " +
             now_ + "), status = 'running' WHERE " + kStillClaimed + " AND (" + which +
             ") RETURNING id",
@@ -499,6 +501,21 @@ class SqlJobStore : public JobStore {
     db->execute("DELETE FROM workers WHERE seen < " + d_.time_ago, {seconds});
     tx.commit();
     return ids;
+  }
+
+  bool notifies() const override { return db_->notifies(); }
+  bool wait_for_change(std::chrono::milliseconds timeout) override {
+    return db_->wait_for_change(timeout);
+  }
+
+  std::vector<JobRecord> changed_within(double seconds) override {
+    // Through the index on `updated`; '' for the job document, which no
+    // event needs (a queued study of thousands is not read every time).
+    std::string columns = kJobColumns;
+    columns.replace(columns.find("job_json"), 8, "'' AS job_json");
+    return read_jobs(db_->connect()->query(
+        "SELECT " + columns + " FROM jobs WHERE updated >= " + d_.time_ago + " ORDER BY seq",
+        {std::max(0.0, seconds)}));
   }
 
   std::vector<JobRecord> active_or_changed_within(double seconds) override {

@@ -1,5 +1,4 @@
 #include "server/listener.hpp"
-#include "server/log.hpp"
 
 #include <cstdio>
 
@@ -7,6 +6,7 @@
 #include <boost/asio/strand.hpp>
 
 #include "server/http_session.hpp"
+#include "server/log.hpp"
 
 namespace gearsph::server {
 

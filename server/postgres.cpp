@@ -1,5 +1,7 @@
 #include "server/postgres.hpp"
 
+#include <poll.h>
+
 #include <libpq-fe.h>
 
 #include <cstdio>
@@ -85,6 +87,26 @@ Connection::Connection(const std::string& uri) : c_(PQconnectdb(uri.c_str())) {
 
 Connection::~Connection() {
   if (c_) PQfinish(c_);
+}
+
+bool Connection::wait_for_notification(int timeout_ms) {
+  auto drain = [&] {
+    bool any = false;
+    while (PGnotify* n = PQnotifies(c_)) {
+      PQfreemem(n);
+      any = true;
+    }
+    return any;
+  };
+  if (drain()) return true;
+  pollfd fd{PQsocket(c_), POLLIN, 0};
+  if (fd.fd < 0) throw Error("", "job store: the listening connection is closed");
+  const int ready = ::poll(&fd, 1, timeout_ms);
+  if (ready < 0) return false;  // a signal: the caller waits again
+  if (ready > 0 && PQconsumeInput(c_) == 0) {
+    throw Error("", "job store: " + trimmed(PQerrorMessage(c_)));
+  }
+  return drain();
 }
 
 bool Connection::ok() const {

@@ -62,6 +62,9 @@ class Connection {
 
   Result exec(const std::string& sql, const std::vector<Param>& params = {});
   bool ok() const;
+  // After LISTEN: waits up to timeout_ms for notifications; true if any
+  // came (all are consumed). Throws if the connection is lost.
+  bool wait_for_notification(int timeout_ms);
 
  private:
   pg_conn* c_ = nullptr;

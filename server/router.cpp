@@ -1,14 +1,13 @@
 #include "server/router.hpp"
 
-#include "server/log.hpp"
-#include "server/metrics.hpp"
-
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
 
 #include <boost/asio/ip/address.hpp>
 
+#include "server/log.hpp"
+#include "server/metrics.hpp"
 #include "server/problem.hpp"
 #include "server/routes.hpp"
 #include "server/routes_preview.hpp"

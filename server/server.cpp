@@ -1,8 +1,4 @@
 #include "server/server.hpp"
-#include "server/log.hpp"
-
-#include "server/attempt_dirs.hpp"
-#include "server/metrics.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -14,6 +10,9 @@
 
 #include <boost/asio/ip/address.hpp>
 
+#include "server/attempt_dirs.hpp"
+#include "server/log.hpp"
+#include "server/metrics.hpp"
 #include "server/slurm_dispatch.hpp"
 
 namespace gearsph::server {

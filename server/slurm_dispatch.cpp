@@ -1,5 +1,4 @@
 #include "server/slurm_dispatch.hpp"
-#include "server/log.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -15,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "server/documents.hpp"
+#include "server/log.hpp"
 
 namespace gearsph::server {
 

@@ -4,6 +4,7 @@
 // pieces of SQL that differ between engines (the Dialect). SQLite
 // (sql_sqlite.cpp) and PostgreSQL (sql_postgres.cpp) each implement it over
 // their thin RAII layer (sqlite.hpp, postgres.hpp).
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -85,6 +86,11 @@ class Database {
   virtual const Dialect& dialect() const = 0;
   // A connection of this thread's own, back to the pool when released.
   virtual std::unique_ptr<Connection> connect() = 0;
+  // Whether the engine tells of changed jobs (PostgreSQL's LISTEN/NOTIFY);
+  // if so, wait_for_change waits up to `timeout` for one (true) or none
+  // (false). Without, the store is polled.
+  virtual bool notifies() const { return false; }
+  virtual bool wait_for_change(std::chrono::milliseconds) { return false; }
 };
 
 }  // namespace gearsph::server::sql

@@ -95,6 +95,19 @@ CREATE TABLE workers (
 CREATE INDEX jobs_by_finished ON jobs(finished);
 )sql";
 
+// 4: every inserted or changed job is announced on the channel gearsph_jobs
+// (LISTEN/NOTIFY): API nodes wait for it instead of reading the table.
+const char* const kMigration4 = R"sql(
+CREATE FUNCTION gearsph_jobs_changed() RETURNS trigger AS $$
+BEGIN
+  PERFORM pg_notify('gearsph_jobs', NEW.id);
+  RETURN NULL;
+END
+$$ LANGUAGE plpgsql;
+CREATE TRIGGER gearsph_jobs_changed AFTER INSERT OR UPDATE ON jobs
+  FOR EACH ROW EXECUTE FUNCTION gearsph_jobs_changed();
+)sql";
+
 // ISO 8601 UTC with milliseconds, as SQLite's strftime writes them.
 #define GEARSPH_ISO(t) "to_char((" t ") AT TIME ZONE 'UTC', 'YYYY-MM-DD\"T\"HH24:MI:SS.MS\"Z\"')"
 
@@ -110,7 +123,7 @@ sql::Dialect postgres_dialect() {
       .skip_locked = " FOR UPDATE SKIP LOCKED",
       .lock_row = " FOR UPDATE",
       .migration_lock = "SELECT pg_advisory_xact_lock(7146301)",  // any fixed number
-      .migrations = {kMigration1, kMigration2, kMigration3},
+      .migrations = {kMigration1, kMigration2, kMigration3, kMigration4},
   };
 }
 
@@ -215,13 +228,37 @@ class PostgresConnection : public sql::Connection {
 
 class PostgresDatabase : public sql::Database {
  public:
-  explicit PostgresDatabase(const std::string& uri) : pool_(uri), dialect_(postgres_dialect()) {}
+  explicit PostgresDatabase(const std::string& uri)
+      : uri_(uri), pool_(uri), dialect_(postgres_dialect()) {}
   const sql::Dialect& dialect() const override { return dialect_; }
   std::unique_ptr<sql::Connection> connect() override {
     return std::make_unique<PostgresConnection>(guarded([&] { return pool_.acquire(); }));
   }
 
+  bool notifies() const override { return true; }
+
+  // On a connection of its own that LISTENs, made again after a failure.
+  bool wait_for_change(std::chrono::milliseconds timeout) override {
+    return guarded([&] {
+      try {
+        if (!listener_ || !listener_->ok()) {
+          listener_.reset();
+          auto c = std::make_unique<postgres::Connection>(uri_);
+          c->exec("LISTEN gearsph_jobs");
+          listener_ = std::move(c);
+          return true;  // (re)connected: something may have changed meanwhile
+        }
+        return listener_->wait_for_notification(static_cast<int>(timeout.count()));
+      } catch (...) {
+        listener_.reset();
+        throw;
+      }
+    });
+  }
+
  private:
+  std::string uri_;
+  std::unique_ptr<postgres::Connection> listener_;  // the watcher's thread only
   postgres::Pool pool_;
   const sql::Dialect dialect_;
 };

@@ -1,14 +1,14 @@
 #include "server/store_watcher.hpp"
-#include "server/log.hpp"
-
-#include "server/attempt_dirs.hpp"
-#include "server/metrics.hpp"
 
 #include <cstdio>
 #include <optional>
 #include <set>
+#include <thread>
 
+#include "server/attempt_dirs.hpp"
 #include "server/documents.hpp"
+#include "server/log.hpp"
+#include "server/metrics.hpp"
 
 namespace gearsph::server {
 
@@ -42,19 +42,45 @@ void StoreWatcher::stop() {
   if (thread_.joinable()) thread_.join();
 }
 
+bool StoreWatcher::wait_for_news() {
+  const auto until = std::chrono::steady_clock::now() + options_.interval;
+  if (!store_.notifies()) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    wake_.wait_until(lock, until, [this] { return stop_; });
+    return true;  // no news without asking
+  }
+  // PostgreSQL: LISTEN/NOTIFY. A change is read at once; without one, the
+  // table is not read at all (the leases are still looked at below).
+  while (std::chrono::steady_clock::now() < until) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (stop_) return false;
+    }
+    try {
+      if (store_.wait_for_change(std::chrono::milliseconds(100))) return true;
+    } catch (const std::exception&) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      return true;  // the next poll says what is wrong
+    }
+  }
+  return false;
+}
+
 void StoreWatcher::loop() {
   using Clock = std::chrono::steady_clock;
-  auto last_ok = Clock::now();
+  auto last_poll = Clock::now();
   for (;;) {
+    const bool news = wait_for_news();
     {
-      std::unique_lock<std::mutex> lock(mutex_);
-      wake_.wait_for(lock, options_.interval, [this] { return stop_; });
+      std::lock_guard<std::mutex> lock(mutex_);
       if (stop_) return;
     }
     // Everything changed since the last poll that succeeded, with a margin
-    // for transactions that committed late and for clock steps.
+    // for transactions that committed late and for clock steps. Without
+    // news, every 5 s all the same (a notification lost with a connection).
     const auto now = Clock::now();
-    const double window = std::chrono::duration<double>(now - last_ok).count() + 5.0;
+    const double since = std::chrono::duration<double>(now - last_poll).count();
+    const double window = since + 5.0;
     try {
       if (options_.reclaim) {
         const Recovery r = store_.reclaim_expired(options_.max_attempts);
@@ -74,8 +100,10 @@ void StoreWatcher::loop() {
                    id.c_str());
         }
       }
-      poll(window);
-      last_ok = now;
+      if (news || since >= 5.0) {
+        poll(window);
+        last_poll = now;
+      }
     } catch (const std::exception& e) {
       log_line(LogLevel::warning, "gearsph serve: watching the job store failed: %s\n", e.what());
     }
@@ -84,7 +112,10 @@ void StoreWatcher::loop() {
 
 void StoreWatcher::poll(double window_s) {
   std::set<std::string> present;
-  for (const JobRecord& job : store_.active_or_changed_within(window_s)) {
+  // The first look learns every active job; later ones read what changed.
+  const std::vector<JobRecord> jobs =
+      primed_ ? store_.changed_within(window_s) : store_.active_or_changed_within(window_s);
+  for (const JobRecord& job : jobs) {
     present.insert(job.id);
     Seen now{job.status, job.message, job.step};
     const auto it = seen_.find(job.id);

@@ -46,6 +46,9 @@ class StoreWatcher {
   };
   void loop();
   void poll(double window_s);
+  // Until the next look: the interval, or (PostgreSQL) a change announced
+  // sooner. False if nothing was announced.
+  bool wait_for_news();
 
   JobStore& store_;
   EventHub& hub_;

@@ -915,6 +915,7 @@ class GatedStore : public JobStore {
   std::vector<WorkerSeen> workers_seen(double) override { return {}; }
   Durations durations(const std::vector<double>&) override { return {}; }
   std::vector<std::string> prune(double) override { return {}; }
+  std::vector<JobRecord> changed_within(double) override { return {}; }
   std::vector<JobRecord> active_or_changed_within(double) override { return {}; }
 
  private:
@@ -945,6 +946,9 @@ class NoWorkers : public Dispatcher {
 TEST(ServerLanes, HealthAnswersWhileTheStoreHoldsEveryReader) {
   namespace net = boost::asio;
   ServerConfig config;
+  TempDir data;  // the results directory /health checks
+  config.data_dir = data.path();
+  fs::create_directories(results_dir_of(config));
   GatedStore store;
   NoWorkers workers;
   EventHub hub;

@@ -156,8 +156,8 @@ TEST(ServerJobStore, RecoverRequeuesThenFailsAfterMaxAttempts) {
   }
   Database db(file);
   // Version 2 added claims with leases and outside schedulers (scale-out),
-  // version 3 the claims' tokens.
-  EXPECT_EQ(db.query("SELECT version FROM schema_version").at(0).at(0), "3");
+  // version 3 the claims' tokens, version 4 the workers' heartbeats.
+  EXPECT_EQ(db.query("SELECT version FROM schema_version").at(0).at(0), "4");
   EXPECT_EQ(db.query("PRAGMA journal_mode").at(0).at(0), "wal");
 }
 
