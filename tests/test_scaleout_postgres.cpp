@@ -260,6 +260,33 @@ TEST_F(ScaleOutPostgres, WorkersShareTheQueueAndFinishAKilledWorkersJob) {
       << logs;
 }
 
+// Workers in PID namespaces of their own (containers with host
+// networking) have the same host name and pid; their names still differ,
+// and so do their claims.
+TEST_F(ScaleOutPostgres, WorkersInTheirOwnPidNamespacesAreToldApart) {
+  if (::geteuid() != 0 || shell("unshare --pid --fork --mount-proc --kill-child true") != 0) {
+    GTEST_SKIP() << "unshare --pid needs root";
+  }
+  ServerProcess api(api_args());
+  auto c = api.client();
+  const std::vector<std::string> ns = {"unshare", "--pid", "--fork", "--mount-proc",
+                                       "--kill-child"};
+  const std::vector<std::string> args = {
+      "--store", uri_,     "--results", results_.path().string(), "--lease",
+      "2",       "--poll", "0.2",       "--threads-per-job",      "1"};
+  WorkerProcess a(args, logs_.path(), 0, ns), b(args, logs_.path(), 1, ns);
+  const std::string host = a.name().substr(0, a.name().find(':'));
+  EXPECT_EQ(a.name().rfind(host + ":1:", 0), 0u) << a.name();
+  EXPECT_EQ(b.name().rfind(host + ":1:", 0), 0u) << b.name();
+  EXPECT_NE(a.name(), b.name());
+  std::vector<std::string> ids;
+  for (int i = 0; i < 6; ++i) ids.push_back(submit(c, tiny_job(0.2)));
+  for (const std::string& id : ids) EXPECT_EQ(wait_final(c, id).at("status"), "successful");
+  PgDatabase db(uri_);
+  EXPECT_EQ(db.value("SELECT COUNT(DISTINCT claim) FROM jobs"), "6");
+  EXPECT_EQ(db.value("SELECT MAX(attempts) FROM jobs"), "1");
+}
+
 // Every file of a directory: name -> size and modification time.
 std::map<std::string, std::pair<std::uintmax_t, fs::file_time_type>> snapshot(const fs::path& dir) {
   std::map<std::string, std::pair<std::uintmax_t, fs::file_time_type>> files;

@@ -49,6 +49,17 @@ TEST(ServerOperations, MetricsInThePrometheusTextFormat) {
     ++samples;
   }
   EXPECT_GT(samples, 15);
+  // The log: a UTC time and a level on every line the service writes.
+  const std::regex log_line(
+      R"(^\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d\.\d{3}Z (INFO |WARN |ERROR) gearsph serve: .+$)");
+  std::istringstream log(server.log());
+  int lines = 0;
+  while (std::getline(log, line)) {
+    if (line.find(": job ") == std::string::npos) continue;  // the jobs' lines
+    EXPECT_TRUE(std::regex_match(line, log_line)) << line;
+    ++lines;
+  }
+  EXPECT_GE(lines, 2) << server.log();  // running, successful
 }
 
 // Jobs that ended longer ago than the retention go with their files.

@@ -69,10 +69,15 @@ class Engine {
 // `gearsph worker ARGS...`, its output in files of its own.
 class WorkerProcess {
  public:
-  WorkerProcess(std::vector<std::string> args, const fs::path& logs, int number)
+  // `prefix`: a command that runs the worker (e.g. unshare into a PID
+  // namespace of its own, as a container would).
+  WorkerProcess(std::vector<std::string> args, const fs::path& logs, int number,
+                std::vector<std::string> prefix = {})
       : out_(logs / ("worker" + std::to_string(number) + ".out")),
         err_(logs / ("worker" + std::to_string(number) + ".err")) {
-    std::vector<std::string> argv = {GEARSPH_BINARY, "worker"};
+    std::vector<std::string> argv = prefix;
+    argv.push_back(GEARSPH_BINARY);
+    argv.push_back("worker");
     argv.insert(argv.end(), args.begin(), args.end());
     std::vector<char*> cargv;
     for (std::string& a : argv) cargv.push_back(a.data());
@@ -85,7 +90,7 @@ class WorkerProcess {
       const int e = ::open(err_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
       ::dup2(o, 1);
       ::dup2(e, 2);
-      ::execv(cargv[0], cargv.data());
+      ::execvp(cargv[0], cargv.data());
       ::_exit(127);
     }
     const auto deadline = Clock::now() + std::chrono::seconds(60);
