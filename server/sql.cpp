@@ -36,4 +36,18 @@ Transaction::~Transaction() {
   }
 }
 
+const char* const kClaimTokens = R"sql(
+ALTER TABLE jobs ADD COLUMN claim TEXT;
+)sql";
+
+const char* const kWorkerHeartbeats = R"sql(
+CREATE TABLE workers (
+  name    TEXT PRIMARY KEY,
+  started TEXT NOT NULL,
+  seen    TEXT NOT NULL,
+  running INTEGER NOT NULL DEFAULT 0
+);
+CREATE INDEX jobs_by_finished ON jobs(finished);
+)sql";
+
 }  // namespace gearsph::server::sql

@@ -63,6 +63,13 @@ class Transaction {
   bool done_ = false;
 };
 
+// Migrations both engines run as they are:
+// a token per claim, which fences every later move of the job (worker
+// names can repeat: two containers' processes are both host:1);
+extern const char* const kClaimTokens;
+// worker processes' heartbeats, for the operator (/metrics).
+extern const char* const kWorkerHeartbeats;
+
 // The SQL that differs between engines. Times are ISO 8601 UTC text with
 // milliseconds and leases are on the database's clock, so every process
 // sharing a database agrees.

@@ -78,22 +78,7 @@ CREATE TABLE idempotency_keys (
 );
 )sql";
 
-// 2: a token per claim, which fences every later move of the job (worker
-// names can repeat: two containers' processes are both host:1).
-const char* const kMigration2 = R"sql(
-ALTER TABLE jobs ADD COLUMN claim TEXT;
-)sql";
-
-// 3: worker processes' heartbeats, for the operator (/metrics).
-const char* const kMigration3 = R"sql(
-CREATE TABLE workers (
-  name    TEXT PRIMARY KEY,
-  started TEXT NOT NULL,
-  seen    TEXT NOT NULL,
-  running INTEGER NOT NULL DEFAULT 0
-);
-CREATE INDEX jobs_by_finished ON jobs(finished);
-)sql";
+// 2 and 3: sql.hpp.
 
 // 4: every inserted or changed job is announced on the channel gearsph_jobs
 // (LISTEN/NOTIFY): API nodes wait for it instead of reading the table.
@@ -123,7 +108,7 @@ sql::Dialect postgres_dialect() {
       .skip_locked = " FOR UPDATE SKIP LOCKED",
       .lock_row = " FOR UPDATE",
       .migration_lock = "SELECT pg_advisory_xact_lock(7146301)",  // any fixed number
-      .migrations = {kMigration1, kMigration2, kMigration3, kMigration4},
+      .migrations = {kMigration1, sql::kClaimTokens, sql::kWorkerHeartbeats, kMigration4},
   };
 }
 

@@ -69,22 +69,7 @@ ALTER TABLE jobs ADD COLUMN dispatch_ref TEXT;
 CREATE INDEX jobs_by_dispatch ON jobs(dispatch_ref) WHERE dispatch_ref IS NOT NULL;
 )sql";
 
-// 3: a token per claim, which fences every later move of the job (worker
-// names can repeat: two containers' processes are both host:1).
-const char* const kMigration3 = R"sql(
-ALTER TABLE jobs ADD COLUMN claim TEXT;
-)sql";
-
-// 4: worker processes' heartbeats, for the operator (/metrics).
-const char* const kMigration4 = R"sql(
-CREATE TABLE workers (
-  name    TEXT PRIMARY KEY,
-  started TEXT NOT NULL,
-  seen    TEXT NOT NULL,
-  running INTEGER NOT NULL DEFAULT 0
-);
-CREATE INDEX jobs_by_finished ON jobs(finished);
-)sql";
+// 3 and 4: sql.hpp.
 
 // Seconds since 1970 on SQLite's clock: leases are REAL.
 #define GEARSPH_EPOCH "((julianday('now') - 2440587.5) * 86400.0)"
@@ -100,7 +85,7 @@ sql::Dialect sqlite_dialect() {
       .skip_locked = "",  // one writer at a time: the claim's UPDATE is atomic as it is
       .lock_row = "",     // BEGIN IMMEDIATE holds the write lock already
       .migration_lock = "",
-      .migrations = {kMigration1, kMigration2, kMigration3, kMigration4},
+      .migrations = {kMigration1, kMigration2, sql::kClaimTokens, sql::kWorkerHeartbeats},
   };
 }
 
