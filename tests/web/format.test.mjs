@@ -1,6 +1,6 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { bytes, duration, eng, eta, int, serverIdentity, sig } from "../../web/js/format.js";
+import { bytes, duration, eng, eta, int, serverDegraded, serverIdentity, sig } from "../../web/js/format.js";
 
 test("eng picks the prefix that keeps three figures readable", () => {
   assert.equal(eng(2.75e8, "Pa"), "275 MPa");
@@ -56,4 +56,15 @@ test("the server's identity: a shared core budget or a fixed split", () => {
     "gearsph 0.1.0 · 2 workers × 1 thread");
   assert.equal(serverIdentity({ version: "0.1.0", workers: 1, threads_per_job: 4 }),
     "gearsph 0.1.0 · 1 worker × 4 threads");
+});
+
+test("a dependency that is down is named in the identity", () => {
+  const hl = {
+    version: "0.1.0", workers: 2, threads_per_job: 1, core_budget: 2, status: "degraded",
+    dependencies: { store: { status: "down", detail: "connection refused" }, results: { status: "up" } },
+  };
+  assert.equal(serverIdentity(hl), "gearsph 0.1.0 · 2 cores shared by the jobs · job store unreachable");
+  assert.equal(serverDegraded(hl), true);
+  assert.equal(serverDegraded({ dependencies: { store: { status: "up" } } }), false);
+  assert.equal(serverDegraded({}), false);
 });

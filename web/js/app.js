@@ -3,7 +3,7 @@
 import { ensureSignedIn, get, onTokenNeeded } from "./api.js";
 import { compareView } from "./compare.js";
 import { events } from "./events.js";
-import { serverIdentity } from "./format.js";
+import { serverDegraded, serverIdentity } from "./format.js";
 import { jobsView } from "./jobs.js";
 import { resultView } from "./result.js";
 import { submitView } from "./submit.js";
@@ -42,14 +42,20 @@ function route() {
   document.title = `${title} · GearSPH`;
 }
 
-// The server's identity once, then whether the live stream is connected.
+// The server's identity, whether a dependency of it is down (/health
+// answers 503 with the same document), and whether the live stream is
+// connected. Asked again every 10 s.
 let identity = null; // null until /health answers, "" if it failed
+let degraded = false;
 async function health() {
   try {
     const hl = await get("/health");
     identity = serverIdentity(hl);
-  } catch {
-    identity = "";
+    degraded = serverDegraded(hl);
+  } catch (e) {
+    const hl = e && e.problem;
+    identity = hl && hl.version ? serverIdentity(hl) : "";
+    degraded = Boolean(identity);
   }
   showConnection();
 }
@@ -57,7 +63,7 @@ async function health() {
 function showConnection() {
   const el = document.getElementById("server-state");
   if (identity === null && events.connected !== false) return; // still "connecting…"
-  const down = events.connected === false || !identity;
+  const down = events.connected === false || !identity || degraded;
   el.classList.toggle("down", down);
   el.title = down ? "" : "live updates connected";
   el.replaceChildren(h("span", { class: "dot" }),
@@ -89,6 +95,7 @@ async function start() {
   window.addEventListener("hashchange", route);
   route();
   health();
+  setInterval(health, 10_000);
   events.start();
   runningCount();
 }

@@ -70,11 +70,21 @@ export function eta(job) {
 }
 
 // The server as the header names it (GET /health): its version and how it
-// runs jobs, a core budget the jobs share or a fixed workers x threads.
+// runs jobs, a core budget the jobs share or a fixed workers x threads; and
+// a dependency that is down (a 503 /health), by name.
 export function serverIdentity(hl) {
   const plural = (n, word) => `${n} ${word}${n === 1 ? "" : "s"}`;
   const runs = hl.core_budget > 0
     ? `${plural(hl.core_budget, "core")} shared by the jobs`
     : `${plural(hl.workers, "worker")} × ${plural(hl.threads_per_job, "thread")}`;
-  return `gearsph ${hl.version} · ${runs}`;
+  const names = { store: "job store", results: "results directory" };
+  const down = Object.entries(hl.dependencies || {})
+    .filter(([, d]) => d && d.status === "down")
+    .map(([name]) => `${names[name] || name} unreachable`);
+  return [`gearsph ${hl.version}`, runs, ...down].join(" · ");
+}
+
+// Whether /health named a dependency that is down.
+export function serverDegraded(hl) {
+  return Object.values(hl.dependencies || {}).some((d) => d && d.status === "down");
 }
