@@ -1,10 +1,7 @@
 #pragma once
 // Arrays that threads write by rows start on a cache line (64 bytes) and
-// own whole lines. With the heap's 16-byte alignment, and small objects
-// packed against the arrays' ends, the 2-thread gear step spent 1.3-2x as
-// long in its kick and drift and up to 1.5x in its stress pass; on one
-// thread the layout made no difference (docs/speed-accuracy.md, sixth
-// round).
+// own whole lines, so that two threads never write one line (false
+// sharing; docs/speed-accuracy.md, "arrays on their own cache lines").
 #include <algorithm>
 #include <atomic>
 #include <cstddef>

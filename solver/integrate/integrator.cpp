@@ -5,14 +5,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <sstream>
 #include <type_traits>
 
+#include "solver/core/passes.hpp"
 #include "solver/core/simulation.hpp"
 #include "solver/diagnostics/guard.hpp"
 #include "solver/integrate/motion.hpp"
 #include "solver/physics/contact.hpp"
+#include "solver/physics/external_loads.hpp"
 #include "solver/physics/momentum.hpp"
 #include "solver/physics/stress_rate.hpp"
 #include "solver/physics/total_lagrangian.hpp"
@@ -77,44 +78,16 @@ void refresh_neighbours(Simulation& sim, bool contacts_moved) {
   }
 }
 
-// Accelerations from outside the bodies' own stress on particles lo .. hi:
-// applied loads, (quasi-static scenes) mass-proportional damping and, with
-// `contact`, the contact accelerations of this step. Returns the energy the
-// damping removed over dt. One vector loop: raw pointers, and the energy
-// summed as a simd reduction (a scalar sum kept the loop scalar).
-double external_accelerations(Particles& p, std::size_t lo, std::size_t hi, double ramp, double c,
-                              double dt, bool contact) {
-  double *ext_ax = p.ext_ax.data(), *ext_ay = p.ext_ay.data();
-  const double *load_ax = p.load_ax.data(), *load_ay = p.load_ay.data();
-  const double *vx = p.vx.data(), *vy = p.vy.data(), *mass = p.mass.data();
-  const double *contact_ax = p.contact_ax.data(), *contact_ay = p.contact_ay.data();
-  double dissipated = 0.0;
-  auto run = [&](auto with_contact) {
-#pragma omp simd reduction(+ : dissipated)
-    for (std::size_t i = lo; i < hi; ++i) {
-      const double ax = ramp * load_ax[i] - c * vx[i], ay = ramp * load_ay[i] - c * vy[i];
-      ext_ax[i] = with_contact ? ax + contact_ax[i] : ax;
-      ext_ay[i] = with_contact ? ay + contact_ay[i] : ay;
-      dissipated += c * mass[i] * (vx[i] * vx[i] + vy[i] * vy[i]) * dt;
-    }
-  };
-  if (contact) {
-    run(std::true_type{});
-  } else {
-    run(std::false_type{});
-  }
-  return dissipated;
-}
-
 void external_forces(Simulation& sim, double dt) {
   Particles& p = sim.particles;
   const std::size_t n = p.n;
-  const double c = sim.damping_1_s, ramp = load_ramp(sim);
+  const double damping = sim.damping_1_s, ramp = physics::load_ramp(sim);
   double dissipated = 0.0;
 #pragma omp parallel num_threads(sim.threads) reduction(+ : dissipated)
   {
     const std::size_t team = omp_get_num_threads(), me = omp_get_thread_num();
-    dissipated += external_accelerations(p, n * me / team, n * (me + 1) / team, ramp, c, dt, false);
+    dissipated += physics::external_accelerations(p, n * me / team, n * (me + 1) / team, ramp,
+                                                  damping, dt, false);
   }
   sim.energy.dissipated += dissipated;
   if (penalty_contact(sim)) physics::contact_forces(sim, dt);  // adds to ext
@@ -131,100 +104,97 @@ void forces(Simulation& sim, double dt) {
   }
 }
 
-// A whole total-Lagrangian step, x^n and v^n to x^{n+1} and v^{n+1}, in one
-// parallel region (no torque-driven groups: their spin needs every
-// particle's acceleration first). Each pass runs over the calling thread's
-// chunks of rows (RowChunks); a barrier stands wherever a pass reads what
-// another thread wrote. Returns the drift's findings; with a particle
-// outside the domain the force passes are skipped and the caller stops the
-// run.
+// What the passes of a total-Lagrangian step add up; each thread its own
+// (run_passes adds them in thread order).
+struct StepSums {
+  double viscous = 0.0;  // power the viscosity (and hourglass control) remove [W/m]
+  double damped = 0.0;   // energy the mass damping removed over the step
+  physics::ContactTally touched;
+  KickPowers power;
+  StepSums& operator+=(const StepSums& o) {
+    viscous += o.viscous;
+    damped += o.damped;
+    touched += o.touched;
+    power += o.power;
+    return *this;
+  }
+};
+
 struct RegionStep {
   Drift drift;
   KickPowers power;
 };
 
+// A whole total-Lagrangian step, x^n and v^n to x^{n+1} and v^{n+1}, as one
+// list of passes in one parallel region (no torque-driven groups: their
+// spin needs every particle's acceleration first). Kicks, drift, momentum
+// and accelerations run over the momentum cut of the rows, F and stress
+// over the deformation cut (ReferencePairs). Returns the drift's findings;
+// with a particle outside the domain the force passes are skipped and the
+// caller stops the run.
 RegionStep total_lagrangian_step(Simulation& sim, double dt) {
   physics::TotalLagrangianPasses tl = physics::total_lagrangian_passes(sim);
-  // Kicks, drift, momentum and accelerations by the momentum cut, F and
-  // stress by the deformation cut (ReferencePairs).
-  const RowChunks& chunks = tl.momentum;
   const bool contact = penalty_contact(sim);
   // Smoothed contact forces are gathered from the surface around each particle.
   const bool spread = contact && physics::contact_smoothing(sim);
-  const double damping = sim.damping_1_s;
   place_rotations(sim, dt);
-  double ramp = 0.0, viscous = 0.0, damped = 0.0;
+  double ramp = 0.0;
   Drift drift;
-  std::exception_ptr failed;
-  physics::ContactTally touched;
-  KickPowers power;
-  // The passes, run by every thread of the region on its own sums (the
-  // reduction's copies).
-  auto region = [&](double& viscous_sum, double& damped_sum, physics::ContactTally& touched_sum,
-                    KickPowers& power_sum) {
-    // v^{n+1/2}, x^{n+1}, u = x - X.
+  bool stop = false;
+
+  // v^{n+1/2}, x^{n+1}, u = x - X.
+  auto kick_and_drift = [&](int c, StepSums&) {
     Drift mine;
-    for_my_chunks(chunks, [&](int c) {
-      kick_drift_particles(sim, dt, chunks.begin(c), chunks.end(c), mine);
-    });
+    kick_drift_particles(sim, dt, tl.momentum.begin(c), tl.momentum.end(c), mine);
 #pragma omp atomic
     drift.outside += mine.outside;
 #pragma omp atomic
     drift.contacts_moved += mine.contacts_moved;
-#pragma omp barrier
-    // One thread: the clock, and the contact list if its skin is used up
-    // (about every 3,000 steps of the meshing gear; built on one thread here).
-#pragma omp single
-    {
-      sim.time += dt;
-      ++sim.step;
-      ramp = load_ramp(sim);
-      if (drift.outside == 0) {
-        try {
-          refresh_neighbours(sim, drift.contacts_moved > 0);
-        } catch (...) {
-          failed = std::current_exception();
-        }
-      }
-    }
-    if (drift.outside == 0 && !failed) {
-      // F - I from the displacements.
-      for_my_chunks(tl.deformation, [&](int c) { physics::deformation_sums(sim, tl, c); });
-#pragma omp barrier
-      // F, P, sigma, rho; contact normals turned.
-      for_my_chunks(tl.deformation, [&](int c) { physics::stress_from_deformation(sim, tl, c); });
-#pragma omp barrier
-      // Contact (its own static split) and the momentum pair sums.
-      if (contact) physics::contact_pairs(sim, dt, touched_sum);
-      for_my_chunks(chunks, [&](int c) { viscous_sum += physics::momentum_sums(sim, tl, c); });
-#pragma omp barrier
-      // Per particle: a^{n+1}, external accelerations, v^{n+1}.
-      for_my_chunks(chunks, [&](int c) {
-        viscous_sum += physics::accelerations(sim, tl, c);
-        damped_sum += external_accelerations(sim.particles, chunks.begin(c), chunks.end(c), ramp,
-                                             damping, dt, contact && !spread);
-        if (spread) physics::add_contact_accelerations(sim, chunks.begin(c), chunks.end(c));
-        power_sum += closing_kick_particles(sim, 0.5 * dt, chunks.begin(c), chunks.end(c));
-      });
-    }
   };
-  if (chunks.chunks() == 1) {
-    // One thread: no region. libgomp wakes a team of one through the kernel
-    // at every barrier (a futex call each, ~7 a step: 7 % of a 1,250-
-    // particle plate's step on this machine); the barriers and the single
-    // block bind to no team here and cost nothing.
-    region(viscous, damped, touched, power);
-  } else {
-#pragma omp parallel num_threads(chunks.chunks()) reduction(+ : viscous, damped, touched, power)
-    region(viscous, damped, touched, power);
-  }
-  if (failed) std::rethrow_exception(failed);
-  if (drift.outside > 0) return {drift, power};
-  sim.energy.dissipated += dt * viscous;  // the same order as separate calls
-  sim.energy.dissipated += damped;
-  if (contact) physics::record_contact(sim, touched);
+  // The clock, and the contact list if its skin is used up (about every
+  // 3,000 steps of the meshing gear).
+  auto clock_and_contact_list = [&](int, StepSums&) {
+    sim.time += dt;
+    ++sim.step;
+    ramp = physics::load_ramp(sim);
+    stop = drift.outside > 0;
+    if (!stop) refresh_neighbours(sim, drift.contacts_moved > 0);
+  };
+  // F - I from the displacements; then F, P, sigma, rho and the turned
+  // contact normals per particle.
+  auto deformation = [&](int c, StepSums&) { physics::deformation_sums(sim, tl, c); };
+  auto stress = [&](int c, StepSums&) { physics::stress_from_deformation(sim, tl, c); };
+  // The contact (its own static split of the candidates) and the momentum
+  // pair sums.
+  auto contact_and_momentum = [&](int, StepSums& s) {
+    if (contact) physics::contact_pairs(sim, dt, s.touched);
+    for_my_chunks(tl.momentum, [&](int c) { s.viscous += physics::momentum_sums(sim, tl, c); });
+  };
+  // Per particle: a^{n+1}, external accelerations, v^{n+1}.
+  auto accelerations_and_kick = [&](int c, StepSums& s) {
+    const std::size_t lo = tl.momentum.begin(c), hi = tl.momentum.end(c);
+    s.viscous += physics::accelerations(sim, tl, c);
+    s.damped += physics::external_accelerations(sim.particles, lo, hi, ramp, sim.damping_1_s, dt,
+                                                contact && !spread);
+    if (spread) physics::add_contact_accelerations(sim, lo, hi);
+    s.power += closing_kick_particles(sim, 0.5 * dt, lo, hi);
+  };
+
+  const Pass<StepSums> step[] = {
+      {"kick and drift", Runs::OverChunks, &tl.momentum, kick_and_drift},
+      {"clock and contact list", Runs::OnOneThread, nullptr, clock_and_contact_list},
+      {"deformation gradient", Runs::OverChunks, &tl.deformation, deformation},
+      {"stress", Runs::OverChunks, &tl.deformation, stress},
+      {"contact and momentum sums", Runs::OnEveryThread, nullptr, contact_and_momentum},
+      {"accelerations and closing kick", Runs::OverChunks, &tl.momentum, accelerations_and_kick},
+  };
+  const StepSums sums = run_passes<StepSums>(step, tl.momentum.chunks(), stop);
+  if (drift.outside > 0) return {drift, sums.power};
+  sim.energy.dissipated += dt * sums.viscous;  // the same order as separate calls
+  sim.energy.dissipated += sums.damped;
+  if (contact) physics::record_contact(sim, sums.touched);
   physics::gather_largest_j2(sim);
-  return {drift, power};
+  return {drift, sums.power};
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include "solver/core/simulation.hpp"
 #include "solver/neighbours/row_chunks.hpp"
+#include "solver/physics/external_loads.hpp"
 
 namespace gearsph::integrate {
 
@@ -29,16 +30,15 @@ void spin(Simulation& sim, std::size_t k, double dt_half) {
     inertia += p.mass[i] * (rx * rx + ry * ry);
   }
   m.group_inertia = inertia;
-  m.alpha = (load_ramp(sim) * m.torque + moment) / (inertia + m.attached_inertia);
+  m.alpha = (physics::load_ramp(sim) * m.torque + moment) / (inertia + m.attached_inertia);
   m.omega += dt_half * m.alpha;
 }
 
 // Raw pointers to what a kick and a drift touch. The loops below run over a
 // stretch of particles that share one motion, through these, so that they
 // vectorise: through Particles& each store makes the compiler reload the
-// next array's address, and a switch per particle stops the vectoriser.
-// Per particle they cost 8 % and 4.5 % of the gear's 2-thread step before
-// (perf, docs/speed-accuracy.md, eighth round).
+// next array's address, and a switch per particle stops the vectoriser
+// (docs/speed-accuracy.md, "the per-particle passes as vector loops").
 struct Kinematics {
   double *x, *y, *vx, *vy;
   const double *x0, *y0, *ax, *ay, *ext_ax, *ext_ay, *mass, *load_ax, *load_ay;
@@ -274,7 +274,7 @@ bool torque_driven(const Simulation& sim) {
 
 KickPowers closing_kick_particles(Simulation& sim, double dt_half, std::size_t lo, std::size_t hi) {
   const Kinematics k(sim.particles);
-  const double ramp = load_ramp(sim);
+  const double ramp = physics::load_ramp(sim);
   KickPowers power;
   for_each_motion_run(sim.particles, sim.motions.data(), lo, hi,
                       [&](std::size_t a, std::size_t b, const Motion& m) {
@@ -301,10 +301,6 @@ KickPowers closing_kick(Simulation& sim, double dt_half) {
     if (m.torque_driven) power.drive += m.group_inertia * m.alpha * m.omega;
   }
   return power;
-}
-
-double load_ramp(const Simulation& sim) {
-  return sim.load_ramp_s > 0.0 ? std::min(1.0, sim.time / sim.load_ramp_s) : 1.0;
 }
 
 }  // namespace gearsph::integrate

@@ -46,7 +46,5 @@ KickPowers closing_kick(Simulation& sim, double dt_half);
 // every particle's acceleration first: torque_driven).
 KickPowers closing_kick_particles(Simulation& sim, double dt_half, std::size_t lo, std::size_t hi);
 bool torque_driven(const Simulation& sim);
-// Fraction of the applied loads acting at sim.time (linear ramp).
-double load_ramp(const Simulation& sim);
 }  // namespace integrate
 }  // namespace gearsph

@@ -140,6 +140,10 @@ inline void turn_surface_normal(const Particles& p, ContactState& state, std::si
                                 double s) {
   turn_normal(c, s, p.surf_nx[i], p.surf_ny[i], state.normal_x[i], state.normal_y[i]);
 }
+// Total-Lagrangian runs: the normals of particles lo .. hi that have
+// contact candidates, turned by the rotation of the polar decomposition of
+// their deformation gradient F = R U (after the stress pass has set F).
+void turn_contact_normals(Simulation& sim, std::size_t lo, std::size_t hi);
 // The pair loop, as a worksharing loop over the candidates without its
 // closing barrier (call it from inside a parallel region, after
 // prepare_contact): contact_ax, contact_ay of every candidate, and the

@@ -40,6 +40,14 @@ inline double saint_venant_kirchhoff_energy(const GreenLagrange& e, double lambd
   return 0.5 * lambda * tr * tr + mu * (e.xx * e.xx + e.yy * e.yy + 2 * e.xy * e.xy);
 }
 
+// Updated Lagrangian: the equation of state of the hypoelastic solid, the
+// pressure of a linear elastic volume change, p = K (rho / rho0 - 1)
+// (Gray, Monaghan & Swift 2001, eq. 2.3, with the bulk modulus K as the
+// stiffness; the deviatoric stress follows the Jaumann rate, stress_rate.hpp).
+inline double pressure_from_density(double bulk_modulus, double rho, double rho0) {
+  return bulk_modulus * (rho / rho0 - 1.0);
+}
+
 // Linear elastic energy per current volume from the pressure p and the
 // deviatoric stress S (S_zz included), with 1/(2K) and 1/(4G) given.
 inline double linear_elastic_energy(double p, double sxx, double syy, double szz, double sxy,

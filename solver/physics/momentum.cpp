@@ -69,9 +69,8 @@ void momentum_loop(Simulation& sim, double dt, double inv_w_dx) {
         const double lyx = 0.5 * (p.lyx[i] + p.lyx[j]), lyy = 0.5 * (p.lyy[i] + p.lyy[j]);
         const double zeta = nonaffine_rate(dvx, dvy, lxx, lxy, lyx, lyy, dx, dy, inv_r);
         const double w = -gx * dx - gy * dy;  // = -r dW/dr >= 0, a smooth pair weight
-        const double coef = hg * 0.5 * (rhoi + p.rho[j]) * 0.5 * (ci + p.cs[j]) * h * w /
-                            (r2 + eta2) / (rhoi * p.rho[j]);
-        const double f = -coef * zeta * inv_r;  // times m_j, along x_ij
+        const double f =
+            hourglass_damping(hg, rhoi, p.rho[j], ci, p.cs[j], h, w, r2, eta2, zeta, inv_r);
         ax += mj * f * dx;
         ay += mj * f * dy;
         power -= mj * f * (dvx * dx + dvy * dy);

@@ -2,6 +2,7 @@
 
 #include "solver/core/simulation.hpp"
 #include "solver/physics/artificial_stress.hpp"
+#include "solver/physics/elastic_law.hpp"
 
 namespace gearsph::physics {
 
@@ -44,7 +45,7 @@ void update_stress(Simulation& sim, double dt) {
     const double K = mat.bulk_modulus(), two_g = 2.0 * mat.shear_modulus();
 
     p.rho[i] += dt * p.drho[i];
-    p.p[i] = K * (p.rho[i] / p.rho0[i] - 1.0);
+    p.p[i] = pressure_from_density(K, p.rho[i], p.rho0[i]);
 
     const double dxx = p.lxx[i], dyy = p.lyy[i], dxy = 0.5 * (p.lxy[i] + p.lyx[i]);
     const double w = 0.5 * (p.lxy[i] - p.lyx[i]);  // Omega_xy

@@ -4,12 +4,15 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <span>
 #include <stdexcept>
 
+#include "solver/core/passes.hpp"
 #include "solver/core/simulation.hpp"
 #include "solver/physics/artificial_viscosity.hpp"
 #include "solver/physics/contact.hpp"
 #include "solver/physics/elastic_law.hpp"
+#include "solver/physics/hourglass.hpp"
 
 namespace gearsph::physics {
 
@@ -20,26 +23,22 @@ namespace {
 constexpr int kDeformationSpill = 4;
 constexpr int kMomentumSpill = 6;
 
-// What a row costs besides its pairs, in pairs of its own pass: measured on
-// the paper's gear, one thread (docs/speed-accuracy.md, sixth round). A pair
-// costs the F pass 2.6 ns and a row the stress pass 10.6 ns; a pair costs
-// the momentum pass 4.9 ns, and as much again when it approaches (the
-// division, the square root, the branch's mispredictions), and a row the
-// accelerations, loads and kicks 14 ns. The tenth round found the
-// division, square root and branch alone worth only ~2 % of the step on one
-// thread; a weight of 1.5 for an approaching pair balanced the threads no
-// better than 1.0 within the runs' spread, so the weight was left as
-// measured in the sixth round.
+constexpr bool kNeverStop = false;
+
+// What a row costs besides its pairs, in pairs of its own pass, and what an
+// approaching pair costs (the viscosity's division and square root) on top
+// of a separating one: measured on the seed paper's gear, one thread
+// (docs/speed-accuracy.md, "a cut for each pair pass").
 constexpr double kStressRowCost = 4.0;
 constexpr double kMomentumRowCost = 3.0;
 constexpr double kApproachingPairCost = 1.0;
 
 // The momentum cut is made at the start by pairs and rows, and again every
 // kReplanSteps steps with each row's approaching pairs (v_ij . x_ij < 0,
-// counted by the last momentum pass) weighted. In the meshing gear 52 % of
-// the pinion's pairs approach against 28-34 % of the rack's; cut by pairs
-// alone, the thread holding the pinion took 14-20 % longer over the
-// momentum pass (docs/speed-accuracy.md, fifth round). The counts are a
+// counted by the last momentum pass) weighted: in the meshing gear the
+// pinion's pairs approach more often than the rack's, and a cut by pairs
+// alone leaves its thread behind (docs/speed-accuracy.md, "chunks cut by
+// cost"). The counts are a
 // function of the state, not of timing, so a run repeats bit for bit; a new
 // cut changes which sums spill, so the round-off. The deformation cut never
 // changes: the reference pairs do not.
@@ -55,8 +54,8 @@ bool count_approaching(long step) {
 
 // Four sums of one particle as one vector (GCC's vector extension: one
 // AVX register). A pair adds its four values to its far end with one load,
-// one fused multiply-add and one store, where four scattered sums took a
-// quarter of the momentum pass (docs/speed-accuracy.md, tenth round).
+// one fused multiply-add and one store instead of four scattered sums
+// (docs/speed-accuracy.md, "a pair's four sums to its far end").
 using Four = double __attribute__((vector_size(4 * sizeof(double))));
 
 // to[0..3] += a * b, each lane rounded once, as the scalar to += a * b is
@@ -149,7 +148,8 @@ void deformation_pairs(Simulation& sim, RowChunks& chunks, int c) {
   }
 }
 
-// F loop, pass 2 for chunk c, per particle: F, then P and the Cauchy stress.
+// F loop, pass 2 for chunk c, per particle: F, then P and the Cauchy stress
+// (Saint Venant-Kirchhoff, elastic_law.hpp), as one vectorised loop.
 void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
   Particles& p = sim.particles;
   ReferencePairs& rp = sim.reference;
@@ -162,62 +162,65 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
   double *Pxx = rp.px.data(), *Pxy = rp.py.data(), *Pyx = rp.pyx.data(), *Pyy = rp.pyy.data();
   double *pressure = p.p.data(), *Sxx = p.sxx.data(), *Syy = p.syy.data();
   double *Szz = p.szz.data(), *Sxy = p.sxy.data(), *rho = p.rho.data();
-  const double *rho0 = p.rho0.data(), *surf_depth = p.surf_depth.data();
+  const double* rho0 = p.rho0.data();
   const double* vol0 = rp.vol0.data();
   const std::int32_t* body = p.body.data();
-  // Contact candidates (penalty contact only), refreshed before this step's
-  // forces, and their normals' scratch (sized when the list was built).
-  const std::uint32_t* contact_rows =
-      sim.contacts.rows.size() == p.n + 1 ? sim.contacts.rows.data() : nullptr;
-  ContactState& touch = sim.contact_state;
-  const bool normals = contact_rows && touch.normal_x.size() == p.n;
   chunks.add_spills_grouped(c, rp.sums.data(), 4);
   const std::size_t lo = chunks.begin(c), hi = chunks.end(c);
-  // The stress of a block of particles as one vectorised loop; then, in
-  // order, the block's largest J2 (first particle on ties, as a scan finds
-  // it) from a buffer on the stack. A branch or a running maximum in the
-  // loop would keep it scalar (this pass cost 10 % of the gear's step).
+#pragma omp simd
+  for (std::size_t i = lo; i < hi; ++i) {
+    const double fxx = 1.0 + m_sum[4 * i], fxy = m_sum[4 * i + 1];
+    const double fyx = m_sum[4 * i + 2], fyy = 1.0 + m_sum[4 * i + 3];
+    Fxx[i] = fxx;
+    Fxy[i] = fxy;
+    Fyx[i] = fyx;
+    Fyy[i] = fyy;
+    const int b = body[i];
+    const SecondPiola s =
+        saint_venant_kirchhoff(green_lagrange(fxx, fxy, fyx, fyy), lambda_body[b], mu_body[b]);
+    const double sxx = s.xx, syy = s.yy, sxy = s.xy, szz = s.zz;
+    // P = F S
+    const double pxx = fxx * sxx + fxy * sxy, pxy = fxx * sxy + fxy * syy;
+    const double pyx = fyx * sxx + fyy * sxy, pyy = fyx * sxy + fyy * syy;
+    // Kept times the reference volume (ReferencePairs::px).
+    const double v0 = vol0[i];
+    Pxx[i] = v0 * pxx;
+    Pxy[i] = v0 * pxy;
+    Pyx[i] = v0 * pyx;
+    Pyy[i] = v0 * pyy;
+    // Cauchy sigma = F S F^T / J (sigma_zz = S_zz / J) for output.
+    const double inv_jac = 1.0 / (fxx * fyy - fxy * fyx);
+    const double cxx = (pxx * fxx + pxy * fxy) * inv_jac;
+    const double cyy = (pyx * fyx + pyy * fyy) * inv_jac;
+    const double cxy = (pxx * fyx + pxy * fyy) * inv_jac;
+    const double czz = szz * inv_jac;
+    const double mean = (cxx + cyy + czz) / 3.0;
+    pressure[i] = -mean;
+    Sxx[i] = cxx - mean;
+    Syy[i] = cyy - mean;
+    Szz[i] = czz - mean;
+    Sxy[i] = cxy;
+    rho[i] = rho0[i] * inv_jac;
+  }
+}
+
+// The largest J2 of chunk c's particles and where (first particle on ties,
+// as a scan finds it), for the run's peak stress without a scan of its own.
+// J2 of a block into a buffer on the stack as one vector loop, then the
+// block's maximum in order: a running maximum in the loop keeps it scalar.
+void note_chunk_peak(Simulation& sim, const RowChunks& chunks, int c) {
+  const Particles& p = sim.particles;
+  const double *Sxx = p.sxx.data(), *Syy = p.syy.data(), *Szz = p.szz.data();
+  const double* Sxy = p.sxy.data();
   constexpr std::size_t kBlock = 64;
   double j2_block[kBlock];
   double j2_max = 0.0;
   long peak = -1;
-  for (std::size_t b0 = lo; b0 < hi; b0 += kBlock) {
-    const std::size_t b1 = std::min(hi, b0 + kBlock);
+  for (std::size_t b0 = chunks.begin(c); b0 < chunks.end(c); b0 += kBlock) {
+    const std::size_t b1 = std::min(chunks.end(c), b0 + kBlock);
 #pragma omp simd
     for (std::size_t i = b0; i < b1; ++i) {
-      const double fxx = 1.0 + m_sum[4 * i], fxy = m_sum[4 * i + 1];
-      const double fyx = m_sum[4 * i + 2], fyy = 1.0 + m_sum[4 * i + 3];
-      Fxx[i] = fxx;
-      Fxy[i] = fxy;
-      Fyx[i] = fyx;
-      Fyy[i] = fyy;
-      const int b = body[i];
-      const SecondPiola s =
-          saint_venant_kirchhoff(green_lagrange(fxx, fxy, fyx, fyy), lambda_body[b], mu_body[b]);
-      const double sxx = s.xx, syy = s.yy, sxy = s.xy, szz = s.zz;
-      // P = F S
-      const double pxx = fxx * sxx + fxy * sxy, pxy = fxx * sxy + fxy * syy;
-      const double pyx = fyx * sxx + fyy * sxy, pyy = fyx * sxy + fyy * syy;
-      // Kept times the reference volume (ReferencePairs::px).
-      const double v0 = vol0[i];
-      Pxx[i] = v0 * pxx;
-      Pxy[i] = v0 * pxy;
-      Pyx[i] = v0 * pyx;
-      Pyy[i] = v0 * pyy;
-      // Cauchy sigma = F S F^T / J (sigma_zz = S_zz / J) for output.
-      const double inv_jac = 1.0 / (fxx * fyy - fxy * fyx);
-      const double cxx = (pxx * fxx + pxy * fxy) * inv_jac;
-      const double cyy = (pyx * fyx + pyy * fyy) * inv_jac;
-      const double cxy = (pxx * fyx + pxy * fyy) * inv_jac;
-      const double czz = szz * inv_jac;
-      const double mean = (cxx + cyy + czz) / 3.0;
-      const double dxx = cxx - mean, dyy = cyy - mean, dzz = czz - mean;
-      pressure[i] = -mean;
-      Sxx[i] = dxx;
-      Syy[i] = dyy;
-      Szz[i] = dzz;
-      Sxy[i] = cxy;
-      rho[i] = rho0[i] * inv_jac;
+      const double dxx = Sxx[i], dyy = Syy[i], dzz = Szz[i], cxy = Sxy[i];
       j2_block[i - b0] = 0.5 * (dxx * dxx + dyy * dyy + dzz * dzz) + cxy * cxy;  // Particles::j2
     }
     for (std::size_t i = b0; i < b1; ++i) {
@@ -227,27 +230,15 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
       }
     }
   }
-  // The contact normals of surface particles with contact candidates turn
-  // with the rotation of the polar decomposition F = R U: in 2D
-  // R = [[c, -s], [s, c]] with (c, s) along (F_xx + F_yy, F_yx - F_xy).
-  // A square root and a division, where an angle cost atan2, sin and cos.
-  // As a masked vector loop: a branch per particle mispredicted along the
-  // mesh zone, and left the thread holding it 2 us a step behind.
-  if (normals) {
-    constexpr double kMaxDepth = std::numeric_limits<double>::max();
-    const double *nx0 = p.surf_nx.data(), *ny0 = p.surf_ny.data();
-    double *nx = touch.normal_x.data(), *ny = touch.normal_y.data();
-#pragma omp simd
-    for (std::size_t i = lo; i < hi; ++i) {
-      const double a = Fxx[i] + Fyy[i], b = Fyx[i] - Fxy[i];
-      const double inv = 1.0 / std::sqrt(a * a + b * b);
-      // Interior particles have depth +inf and no normal.
-      if (contact_rows[i] != contact_rows[i + 1] && std::abs(surf_depth[i]) <= kMaxDepth) {
-        turn_normal(a * inv, b * inv, nx0[i], ny0[i], nx[i], ny[i]);
-      }
-    }
-  }
-  rp.chunk_peaks[c] = {j2_max, peak};
+  sim.reference.chunk_peaks[c] = {j2_max, peak};
+}
+
+// Pass 2 whole: the stress, the contact normals turned with the material,
+// and the chunk's peak.
+void stress_pass(Simulation& sim, RowChunks& chunks, int c) {
+  stress_per_particle(sim, chunks, c);
+  turn_contact_normals(sim, chunks.begin(c), chunks.end(c));
+  note_chunk_peak(sim, chunks, c);
 }
 
 // The pair loop of the momentum equation, instantiated with and without
@@ -258,8 +249,7 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
 // (equal and opposite: momentum is conserved exactly). The own share
 // P_i sum_j V0_j G_ij needs no pair work (sgx, sgy). The row sums are left
 // scalar on purpose: `omp simd` reductions over gathered neighbours cost more
-// in gathers, masks and set-up than they save (measured: 17 % slower here,
-// 2.2x slower in the F loop; docs/speed-accuracy.md).
+// in gathers, masks and set-up than they save (docs/speed-accuracy.md).
 // Momentum loop, pass 1 for chunk c; returns the energy the hourglass
 // control removed per unit time (the viscosity's: accelerations_per_particle).
 template <bool kHourglass, bool kCount, bool kUniform, bool kGraded>
@@ -312,10 +302,9 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
     double sx = sums[4 * i], sy = sums[4 * i + 1], vsx = sums[4 * i + 2], vsy = sums[4 * i + 3];
     double hsx = kHourglass ? hg_sum[0][i] : 0.0, hsy = kHourglass ? hg_sum[1][i] : 0.0;
     std::uint32_t approaching = 0;
-    // Inlined by force: with hourglass control GCC kept this lambda out of
-    // line, its sums and array addresses went through the closure to memory
-    // at every pair, and the control cost 3.6 times the pass instead of 2
-    // (docs/speed-accuracy.md).
+    // Inlined by force: out of line (GCC's choice with hourglass control) its
+    // sums and array addresses go through the closure to memory at every
+    // pair (docs/speed-accuracy.md, "Hourglass control's pair loop").
     auto pairs = [&](std::uint32_t k0, std::uint32_t k1, double* to, double* const* hg_to,
                      std::size_t base) __attribute__((always_inline)) {
       for (std::uint32_t k = k0; k < k1; ++k) {
@@ -348,17 +337,11 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
         const double mpg = mi * pg;
         add_product(to + 4 * t, Four{share_x, share_y, mpg, mpg}, Four{1.0, 1.0, dx, dy});
         if constexpr (kHourglass) {
-          // Ganzenmueller 2015, eqs. (23)-(27): the pair's stretch that the
-          // mean deformation gradient does not explain, e = x_ij - F_mean
-          // X_ij, pulled back along the pair with the stiffness
-          // hg E_i V_j W / (2 |X|^2 rho0_i), times e . x_ij / r^2 (the
-          // stretch per length along the unit pair twice: no square root).
-          // w0 holds W / (2 |X|^2), e_over_rho0 E / rho0 (set-up).
-          const double X = x0[i] - x0[j], Y = y0[i] - y0[j];
-          const double fxx = 0.5 * (Fxx[i] + Fxx[j]), fxy = 0.5 * (Fxy[i] + Fxy[j]);
-          const double fyx = 0.5 * (Fyx[i] + Fyx[j]), fyy = 0.5 * (Fyy[i] + Fyy[j]);
-          const double ex = dx - (fxx * X + fxy * Y), ey = dy - (fyx * X + fyy * Y);
-          const double common = -hg * w0[k] * (ex * dx + ey * dy) / r2;
+          // Ganzenmueller 2015, eqs. (23)-(27) (hourglass.hpp); w0 holds
+          // W / (2 |X|^2), e_over_rho0 E / rho0 (set-up).
+          const double common = hourglass_stiffness(
+              hg, w0[k], dx, dy, x0[i] - x0[j], y0[i] - y0[j], 0.5 * (Fxx[i] + Fxx[j]),
+              0.5 * (Fxy[i] + Fxy[j]), 0.5 * (Fyx[i] + Fyx[j]), 0.5 * (Fyy[i] + Fyy[j]), r2);
           const double fi = common * e_mod * vol0[j];
           const double fj = common * e_over_rho0[j] * vi;
           hsx += fi * dx;
@@ -436,42 +419,34 @@ double accelerations_per_particle(Simulation& sim, RowChunks& chunks, int c) {
   return viscous;
 }
 
+// The passes of F and the stress, and those of the momentum equation, as
+// lists for run_passes (core/passes.hpp): the stable-step estimate runs them
+// apart, the step by terms together; the one-region step
+// (integrate/integrator.cpp) interleaves them with the kicks and contact.
+// Each pass sums the power it removes [W/m] (hourglass, viscosity).
 template <bool kHourglass>
-void momentum(Simulation& sim, double dt) {
-  RowChunks& rows = planned_chunks(sim, sim.step).momentum;
-  double dissipated = 0.0;
-#pragma omp parallel num_threads(rows.chunks()) reduction(+ : dissipated)
-  {
-    for_my_chunks(rows, [&](int c) { dissipated += momentum_pairs<kHourglass>(sim, rows, c); });
-#pragma omp barrier
-    for_my_chunks(
-        rows, [&](int c) { dissipated += accelerations_per_particle<kHourglass>(sim, rows, c); });
-  }
-  sim.energy.dissipated += dt * dissipated;
-}
-
-// Stress and momentum in one parallel region: three barriers a step.
-template <bool kHourglass>
-void stress_and_momentum(Simulation& sim, double dt) {
+double run_stress_and_momentum(Simulation& sim, bool stress, bool momentum) {
   const Cuts cut = planned_chunks(sim, sim.step);
   RowChunks &f_rows = cut.deformation, &m_rows = cut.momentum;
-  double dissipated = 0.0;
-#pragma omp parallel num_threads(f_rows.chunks()) reduction(+ : dissipated)
-  {
-    for_my_chunks(f_rows, [&](int c) { displacements(sim, f_rows, c); });
-#pragma omp barrier
-    for_my_chunks(f_rows, [&](int c) { deformation_pairs(sim, f_rows, c); });
-#pragma omp barrier
-    for_my_chunks(f_rows, [&](int c) { stress_per_particle(sim, f_rows, c); });
-#pragma omp barrier
-    for_my_chunks(m_rows, [&](int c) { dissipated += momentum_pairs<kHourglass>(sim, m_rows, c); });
-#pragma omp barrier
-    for_my_chunks(m_rows, [&](int c) {
-      dissipated += accelerations_per_particle<kHourglass>(sim, m_rows, c);
-    });
-  }
-  sim.energy.dissipated += dt * dissipated;
-  gather_largest_j2(sim);
+  auto displace = [&](int c, double&) { displacements(sim, f_rows, c); };
+  auto deformation = [&](int c, double&) { deformation_pairs(sim, f_rows, c); };
+  auto stresses = [&](int c, double&) { stress_pass(sim, f_rows, c); };
+  auto momentum_sums = [&](int c, double& s) { s += momentum_pairs<kHourglass>(sim, m_rows, c); };
+  auto accelerations = [&](int c, double& s) {
+    s += accelerations_per_particle<kHourglass>(sim, m_rows, c);
+  };
+  const Pass<double> all[] = {
+      {"displacements", Runs::OverChunks, &f_rows, displace},
+      {"deformation gradient", Runs::OverChunks, &f_rows, deformation},
+      {"stress", Runs::OverChunks, &f_rows, stresses},
+      {"momentum sums", Runs::OverChunks, &m_rows, momentum_sums},
+      {"accelerations", Runs::OverChunks, &m_rows, accelerations},
+  };
+  const std::span<const Pass<double>> passes =
+      std::span(all).subspan(stress ? 0 : 3, (stress ? 3 : 0) + (momentum ? 2 : 0));
+  const double dissipated = run_passes(passes, f_rows.chunks(), kNeverStop);
+  if (stress) gather_largest_j2(sim);
+  return dissipated;
 }
 
 bool hourglass_ready(const Simulation& sim) {
@@ -486,24 +461,13 @@ bool hourglass_ready(const Simulation& sim) {
 }  // namespace
 
 void total_lagrangian_stress(Simulation& sim) {
-  RowChunks& rows = planned_chunks(sim, sim.step).deformation;
-#pragma omp parallel num_threads(rows.chunks())
-  {
-    for_my_chunks(rows, [&](int c) { displacements(sim, rows, c); });
-#pragma omp barrier
-    for_my_chunks(rows, [&](int c) { deformation_pairs(sim, rows, c); });
-#pragma omp barrier
-    for_my_chunks(rows, [&](int c) { stress_per_particle(sim, rows, c); });
-  }
-  gather_largest_j2(sim);
+  run_stress_and_momentum<false>(sim, true, false);  // hourglass control acts in momentum only
 }
 
 void total_lagrangian_momentum(Simulation& sim, double dt) {
-  if (hourglass_ready(sim)) {
-    momentum<true>(sim, dt);
-  } else {
-    momentum<false>(sim, dt);
-  }
+  const double dissipated = hourglass_ready(sim) ? run_stress_and_momentum<true>(sim, false, true)
+                                                 : run_stress_and_momentum<false>(sim, false, true);
+  sim.energy.dissipated += dt * dissipated;
 }
 
 void gather_largest_j2(Simulation& sim) {
@@ -530,7 +494,7 @@ void deformation_sums(Simulation& sim, TotalLagrangianPasses& tl, int c) {
 }
 
 void stress_from_deformation(Simulation& sim, TotalLagrangianPasses& tl, int c) {
-  stress_per_particle(sim, tl.deformation, c);
+  stress_pass(sim, tl.deformation, c);
 }
 
 double momentum_sums(Simulation& sim, TotalLagrangianPasses& tl, int c) {
@@ -544,11 +508,9 @@ double accelerations(Simulation& sim, TotalLagrangianPasses& tl, int c) {
 }
 
 void total_lagrangian_forces(Simulation& sim, double dt) {
-  if (hourglass_ready(sim)) {
-    stress_and_momentum<true>(sim, dt);
-  } else {
-    stress_and_momentum<false>(sim, dt);
-  }
+  const double dissipated = hourglass_ready(sim) ? run_stress_and_momentum<true>(sim, true, true)
+                                                 : run_stress_and_momentum<false>(sim, true, true);
+  sim.energy.dissipated += dt * dissipated;
 }
 
 }  // namespace gearsph::physics

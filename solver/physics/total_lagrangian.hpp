@@ -67,8 +67,7 @@ struct ReferencePairs {
   // far end as one vector: the F pass's M = F - I (xx, xy, yx, yy), then
   // the momentum pass's stress share and viscous acceleration (x, y, x, y),
   // summed apart so that the pair-once sums end in the same order as full
-  // rows would. Four scattered sums cost the momentum pass a quarter of its
-  // time (docs/speed-accuracy.md, tenth round).
+  // rows would (docs/speed-accuracy.md, "a pair's four sums to its far end").
   Column<double> sums;
   // Hourglass accelerations.
   Column<double> hg_ax, hg_ay;
