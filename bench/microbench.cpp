@@ -34,7 +34,7 @@ BENCHMARK(BM_KernelGradient<gearsph::kernels::QuinticSpline>);
 BENCHMARK(BM_KernelGradient<gearsph::kernels::WendlandC2>);
 
 // The pair loops on a prepared scene, one thread: the plate of validation.md
-// section 5 at H/dx = 10 (1250 particles) and the paper's gear case. Items
+// section 5 at H/dx = 10 (1250 particles) and the seed paper's gear case. Items
 // are directed pair entries, so items/s is pair interactions per second.
 gearsph::PreparedJob prepared(const char* scene) {
   const nlohmann::json plate = {

@@ -67,7 +67,7 @@ GearMeshSizes gear_mesh_sizes(const geometry::PinionGeometry& pinion, double fil
 
 // The fillet element sizes of the convergence pair for this pinion: 1/12
 // and 1/24 of the ISO 6336-3 fillet radius at the critical section, 0.2 and
-// 0.1 mm for the paper's pinion (rho_F = 2.38 mm), rounded to two digits.
+// 0.1 mm for the seed paper's pinion (rho_F = 2.38 mm), rounded to two digits.
 std::vector<double> default_fillet_sizes(const geometry::PinionGeometry& pinion);
 
 struct GearLoadPatch {

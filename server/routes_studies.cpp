@@ -161,8 +161,8 @@ Response create_study(Services& s, Request& req) {
     }
   }
   // Every job is checked (its scene built, its stable step found: about a
-  // second for the paper's case) before any is stored, on as many threads
-  // as there are cores: a 16-job study of the paper's case was submitted
+  // second for the seed paper's case) before any is stored, on as many threads
+  // as there are cores: a 16-job study of the seed paper's case was submitted
   // in 18 s on one.
   std::vector<std::variant<NewJob, Refusal>> checked(points.size());
   {

@@ -27,7 +27,7 @@ struct Discretization {
   double h() const { return h_over_dx * dx; }
 };
 
-// Monaghan artificial viscosity (Monaghan 1992, eq. 4.1); the paper's Pi_ij.
+// Monaghan artificial viscosity (Monaghan 1992, eq. 4.1); the seed paper's Pi_ij.
 struct ArtificialViscosity {
   double alpha = 1.0;
   double beta = 1.0;

@@ -9,7 +9,7 @@
 // the line tangent to the pinion's pitch circle, r below the centre, i.e. x m
 // below the rack datum; the working pressure angle is alpha for any shift.
 // Rolling without slip: a rack displacement d along +x turns the pinion by
-// d / r counter-clockwise (the paper's clockwise pinion drives the rack -x).
+// d / r counter-clockwise (the seed paper's clockwise pinion drives the rack -x).
 //
 // Phase: at travel 0, pinion tooth k points straight down (-y) and sits in the
 // rack space i, centred between rack teeth i - 1 and i. This is the position

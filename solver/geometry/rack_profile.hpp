@@ -21,7 +21,7 @@ namespace gearsph::geometry {
 struct RackSpec {
   BasicRack profile;
   int teeth = 5;
-  double back_thickness_m = 8e-3;  // body below the root line (2 m in the paper's case)
+  double back_thickness_m = 8e-3;  // body below the root line (2 m in the seed paper's case)
   double backlash_m = 0.0;         // total thinning at the datum line
   double tip_radius_coef = 0.0;    // optional rounding of the tip corners (not in ISO 53)
   double chord_tolerance_m = 1e-7;

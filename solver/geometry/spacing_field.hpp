@@ -14,7 +14,7 @@
 // accuracy: under a uniform strain the graded particles' pair forces
 // should cancel, and at g = 0.25 their residual in the graded zone is
 // 5-10 times that of uniform particles (median 2.0-2.7 %, 95th percentile
-// 7-13 % of stress / spacing), which put the paper's fillet stress 7-15 %
+// 7-13 % of stress / spacing), which put the seed paper's fillet stress 7-15 %
 // above the converged finite-element value; at 0.12 the residual is the
 // uniform one and the fillet agrees with uniform particles
 // (docs/method.md, GradedKernel.UniformStrainIsInEquilibriumAcrossTheGrading).

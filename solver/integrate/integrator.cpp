@@ -61,7 +61,7 @@ void refresh_neighbours(Simulation& sim, bool contacts_moved) {
   if (!total_lagrangian(sim) &&
       (sim.neighbours.builds() == 0 || sim.neighbours.needs_rebuild(sim.particles))) {
     // Kernel interactions stay inside a body unless the contact model is the
-    // kernel itself (the coupling whose adhesion the paper avoids).
+    // kernel itself (the coupling whose adhesion the seed paper avoids).
     const PairSelection selection = sim.contact.model == ContactModel::Kernel
                                         ? PairSelection::AnyBody
                                         : PairSelection::SameBody;

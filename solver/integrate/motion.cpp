@@ -127,11 +127,11 @@ void open_run(const Kinematics& k, const Motion& m, std::size_t lo, std::size_t 
       break;
     case Motion::Kind::Rotation: {
       // Held: placed exactly at omega t, no drift over a million steps.
-      const double c = m.cos_next, s = m.sin_next;
+      const double cos_t = m.cos_next, sin_t = m.sin_next;
 #pragma omp simd
       for (std::size_t i = lo; i < hi; ++i) {
         const double rx = k.x0[i] - m.cx, ry = k.y0[i] - m.cy;
-        const double nx = m.cx + c * rx - s * ry, ny = m.cy + s * rx + c * ry;
+        const double nx = m.cx + cos_t * rx - sin_t * ry, ny = m.cy + sin_t * rx + cos_t * ry;
         vx[i] = (nx - x[i]) / dt;
         vy[i] = (ny - y[i]) / dt;
         x[i] = nx;

@@ -36,7 +36,7 @@ const jsonschema::Validator& validator() {
 }
 
 // Default smoothing length: every kernel reaches 3 dx (method.md: kappa = 1
-// for the paper's support-3h kernel).
+// for the seed paper's support-3h kernel).
 double default_h_over_dx(KernelType k) {
   return kernel_support(k) >= 3.0 ? 1.0 : 1.5;
 }
@@ -249,11 +249,11 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads, int max_threads)
   TimeStepRequest request;
   if (t.contains("dt_s")) request.dt_s = t.at("dt_s").get<double>();
   if (t.contains("cfl")) request.cfl = t.at("cfl").get<double>();
-  // A scene may carry its own default step (the paper's case: 4e-8 s).
+  // A scene may carry its own default step (the seed paper's case: 4e-8 s).
   request.allow_unstable = t.at("allow_unstable").get<bool>();
   request.extra_limit_s = physics::contact_time_step_limit(sim);
   request.extra_name = "contact stiffness";
-  // A scene may carry its own default step (the paper's case: 4e-8 s at
+  // A scene may carry its own default step (the seed paper's case: 4e-8 s at
   // 1 mm); at a finer spacing it may be unstable, and then the automatic
   // step applies instead.
   bool scene_step = false;

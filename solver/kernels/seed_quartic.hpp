@@ -1,5 +1,5 @@
 #pragma once
-// The paper's quartic kernel (seed paper, "novel quartic smoothing kernel"),
+// The seed paper's quartic kernel (seed paper, "novel quartic smoothing kernel"),
 // support 3h. Shape f(R) with R = r/h; W = alpha_d f(R).
 // alpha_d = 1/(88 h), 1/(46 pi h^2), 105/(8464 pi h^3) in 1D/2D/3D.
 // f'(0) = -64: the kernel has a cusp at the origin (method.md keeps it).

@@ -29,8 +29,9 @@ inline Sym2 artificial_stress(const ArtificialStress& as, double sxx, double syy
   if (r1 == 0.0 && r2 == 0.0) return {0.0, 0.0, 0.0};
   // Principal direction of s1: angle theta with tan(2 theta) = 2 sxy / (sxx - syy).
   const double theta = 0.5 * std::atan2(sxy, half_diff);
-  const double c = std::cos(theta), s = std::sin(theta);
-  return {r1 * c * c + r2 * s * s, r1 * s * s + r2 * c * c, (r1 - r2) * s * c};
+  const double cos_t = std::cos(theta), sin_t = std::sin(theta);
+  return {r1 * cos_t * cos_t + r2 * sin_t * sin_t, r1 * sin_t * sin_t + r2 * cos_t * cos_t,
+          (r1 - r2) * sin_t * cos_t};
 }
 
 // f_ij^n with f_ij = W_ij / W(dx).

@@ -1,11 +1,11 @@
 #pragma once
-// Monaghan artificial viscosity, the paper's Pi_ij (Monaghan 1992, eq. 4.1),
+// Monaghan artificial viscosity, the seed paper's Pi_ij (Monaghan 1992, eq. 4.1),
 // in the three forms the solver uses (below):
 //   Pi_ij = (-alpha c_ij phi_ij + beta phi_ij^2) / rho_ij   if v_ij . x_ij < 0
 //   phi_ij = h v_ij . x_ij / (|x_ij|^2 + eta^2)
 // with pair means c_ij, rho_ij. Pi_ij >= 0, and it enters the momentum
 // equation with a minus sign, like a pressure, so it only removes kinetic
-// energy (the paper's "+ Pi delta" is a sign-convention slip; method.md).
+// energy (the seed paper's "+ Pi delta" is a sign-convention slip; method.md).
 #include <cmath>
 
 #include "solver/core/method.hpp"

@@ -62,8 +62,8 @@ constexpr double kPartnersAtOnce = 3.0;
 }  // namespace
 
 double contact_time_step_limit(const Simulation& sim) {
-  const ContactConfig& c = sim.contact;
-  if (!is_penalty(c.model) || sim.bodies.size() < 2) return 0.0;
+  const ContactConfig& config = sim.contact;
+  if (!is_penalty(config.model) || sim.bodies.size() < 2) return 0.0;
   // The stiffest pair: the finest spacing and the lightest particles of each
   // body (a lattice's dx and dx^2; body-fitted outline particles have about
   // half a cell).
@@ -77,7 +77,7 @@ double contact_time_step_limit(const Simulation& sim) {
   };
   double dx = sim.discretization.dx;
   for (std::size_t i = 0; i < p.n; ++i) dx = std::min(dx, p.spacing[i]);
-  const double r0 = c.r0_over_dx * dx;
+  const double r0 = config.r0_over_dx * dx;
   double omega2 = 0.0;
   for (std::size_t a = 0; a < sim.bodies.size(); ++a) {
     for (std::size_t b = a + 1; b < sim.bodies.size(); ++b) {
@@ -87,11 +87,11 @@ double contact_time_step_limit(const Simulation& sim) {
       const double vol = 2.0 * va * vb / (va + vb);
       // Stiffness at the deepest overlap we tolerate (r0/2) for Hertz; the
       // linear law has one stiffness.
-      const bool near = c.model == ContactModel::Surface && c.near_field;
-      const double k = c.model == ContactModel::Hertz
+      const bool near = config.model == ContactModel::Surface && config.near_field;
+      const double k = config.model == ContactModel::Hertz
                            ? hertz_penalty(e_star, dx, 0.5 * r0).stiffness
                        : near ? kStiffSpring * e_star * vol / (dx * dx)
-                              : seed_penalty(c.D, e_star, vol, r0, 0.0).stiffness;
+                              : seed_penalty(config.D, e_star, vol, r0, 0.0).stiffness;
       const double inv_m = 1.0 / (ma.rho0 * va) + 1.0 / (mb.rho0 * vb);
       // The surface law's lateral hat weights add up to one over a row of
       // partners: one partner's stiffness at most (the near-field law's
@@ -354,8 +354,8 @@ void turn_contact_normals(Simulation& sim, std::size_t lo, std::size_t hi) {
 void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
   Particles& p = sim.particles;
   const NeighbourList& nl = sim.contacts;
-  const ContactConfig& c = sim.contact;
-  const bool surface = c.model == ContactModel::Surface;
+  const ContactConfig& config = sim.contact;
+  const bool surface = config.model == ContactModel::Surface;
   const bool smooth = contact_smoothing(sim);
   const ContactState& st = sim.contact_state;
   const double* spacing = p.spacing.data();
@@ -389,7 +389,7 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
       // The pair's spacing: the coarser of the two, so that the hat weight
       // of a fine particle spans its coarse partners' row (graded particles;
       // a lattice's dx otherwise). Symmetric in i and j.
-      const double dx = std::max(spacing[i], spacing[j]), r0 = c.r0_over_dx * dx;
+      const double dx = std::max(spacing[i], spacing[j]), r0 = config.r0_over_dx * dx;
       double nx, ny, overlap, weight = 1.0;
       if (surface) {
         // True-surface gap (contact_surface.hpp); normals turned with the material.
@@ -425,16 +425,16 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
       const double vj = p.mass[j] / p.rho[j];
       const double vol = 2.0 * vi * vj / (vi + vj);
       PairLaw law;
-      if (c.model == ContactModel::Hertz) {
+      if (config.model == ContactModel::Hertz) {
         law = hertz_penalty(e_star, dx, overlap);
-      } else if (surface && c.near_field) {
+      } else if (surface && config.near_field) {
         const NearField nf = near_field(e_star, plane_strain_compliance(mi),
                                         plane_strain_compliance(mj), st.log_moment[i],
                                         st.log_moment[j], p.surf_curvature[i] + p.surf_curvature[j],
                                         kStiffSpring * e_star * vol / (dx * dx));
         law = near_field_law(nf, overlap);
       } else {
-        law = seed_penalty(c.D, e_star, vol, surface ? dx : r0, overlap);
+        law = seed_penalty(config.D, e_star, vol, surface ? dx : r0, overlap);
       }
       law.force *= weight;
       law.stiffness *= weight;
@@ -443,7 +443,7 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
       // damping of the pair oscillator; the total never pulls (no adhesion).
       const double vn = (si.vx - sj.vx) * nx + (si.vy - sj.vy) * ny;  // > 0 separating
       const double m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
-      const double damper = 2.0 * c.damping_ratio * std::sqrt(law.stiffness * m_eff);
+      const double damper = 2.0 * config.damping_ratio * std::sqrt(law.stiffness * m_eff);
       const double f = std::max(0.0, law.force - damper * vn);
       fx += f * nx;
       fy += f * ny;

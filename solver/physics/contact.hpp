@@ -1,5 +1,5 @@
 #pragma once
-// Contact between bodies (method.md, "the paper's modified interaction
+// Contact between bodies (method.md, "the seed paper's modified interaction
 // force"). Particles of different bodies do not interact through the kernel
 // unless the model is `kernel`; instead a pair closer than r0 feels a
 // repulsive force along the line of centres, which is zero for r >= r0, so
@@ -19,10 +19,10 @@ namespace gearsph {
 struct Simulation;
 
 enum class ContactModel {
-  SeedPenalty,  // the paper's force, linear in the overlap (contact_seed_penalty.hpp)
+  SeedPenalty,  // the seed paper's force, linear in the overlap (contact_seed_penalty.hpp)
   Surface,      // the same law on the gap between the true surfaces (contact_surface.hpp)
   Hertz,        // a Hertz-type penalty, overlap^(3/2) (contact_hertz.hpp)
-  Kernel,       // bodies coupled through the SPH sums (shows the paper's adhesion)
+  Kernel,       // bodies coupled through the SPH sums (shows the seed paper's adhesion)
   None,         // bodies pass through each other (only for single-body scenes)
 };
 
@@ -30,9 +30,9 @@ const char* contact_model_name(ContactModel m);
 
 struct ContactConfig {
   ContactModel model = ContactModel::SeedPenalty;
-  double D = 1.0;              // dimensionless stiffness coefficient of the paper's force
+  double D = 1.0;              // dimensionless stiffness coefficient of the seed paper's force
   double damping_ratio = 0.0;  // normal dashpot, fraction of critical for one pair
-  double r0_over_dx = 1.0;     // interaction range r0 (the paper: the initial spacing)
+  double r0_over_dx = 1.0;     // interaction range r0 (the seed paper: the initial spacing)
   // Surface model: radius, in the particle's spacings, of the surface
   // neighbourhood over which a contact is measured and its force spread
   // (contact_smoothing.hpp); 0 acts on single particles.
@@ -129,16 +129,17 @@ const std::uint8_t* contact_eligible(Simulation& sim);
 // particle's contact acceleration. A no-op if done for this build already.
 void prepare_contact(Simulation& sim);
 // Surface model: particle i's outward normal turned by its material
-// rotation, given as its cosine c and sine s, into the state's scratch. The
+// rotation, given as its cosine and sine, into the state's scratch. The
 // total-Lagrangian stress pass turns them by F's rotation; contact_forces
 // turns them by the updated-Lagrangian angle rot.
-inline void turn_normal(double c, double s, double nx0, double ny0, double& nx, double& ny) {
-  nx = c * nx0 - s * ny0;
-  ny = s * nx0 + c * ny0;
+inline void turn_normal(double cos_t, double sin_t, double nx0, double ny0, double& nx,
+                        double& ny) {
+  nx = cos_t * nx0 - sin_t * ny0;
+  ny = sin_t * nx0 + cos_t * ny0;
 }
-inline void turn_surface_normal(const Particles& p, ContactState& state, std::size_t i, double c,
-                                double s) {
-  turn_normal(c, s, p.surf_nx[i], p.surf_ny[i], state.normal_x[i], state.normal_y[i]);
+inline void turn_surface_normal(const Particles& p, ContactState& state, std::size_t i,
+                                double cos_t, double sin_t) {
+  turn_normal(cos_t, sin_t, p.surf_nx[i], p.surf_ny[i], state.normal_x[i], state.normal_y[i]);
 }
 // Total-Lagrangian runs: the normals of particles lo .. hi that have
 // contact candidates, turned by the rotation of the polar decomposition of

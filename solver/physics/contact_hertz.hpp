@@ -13,9 +13,9 @@
 namespace gearsph::physics {
 
 inline PairLaw hertz_penalty(double e_star, double dx, double overlap) {
-  const double c = (4.0 / 3.0) * e_star * std::sqrt(0.25 * dx) / dx;
+  const double k = (4.0 / 3.0) * e_star * std::sqrt(0.25 * dx) / dx;
   const double s = std::sqrt(overlap);
-  return {c * overlap * s, 1.5 * c * s, 0.4 * c * overlap * overlap * s};
+  return {k * overlap * s, 1.5 * k * s, 0.4 * k * overlap * overlap * s};
 }
 
 }  // namespace gearsph::physics

@@ -1,5 +1,5 @@
 #pragma once
-// The paper's interaction force between a pinion particle i and a rack
+// The seed paper's interaction force between a pinion particle i and a rack
 // particle j, read dimensionally (method.md): an acceleration
 //   a_i = D (E_ij / rho_i) (r0 - r) / r0^2 n_ij,  n_ij = (x_i - x_j)/r,  r < r0
 // and zero for r >= r0. As a pair force with equal volumes this is

@@ -7,7 +7,7 @@
 // load on one or two outline particles. A particle pushed alone by a point
 // force meets little resistance from the SPH sums (its own stress does not
 // change when it moves against neighbours that stay: the zero-energy
-// pattern), so it sinks in and its neighbours pop out: in the paper's pinion
+// pattern), so it sinks in and its neighbours pop out: in the seed paper's pinion
 // at 1 kN the loaded particle moved 2 um further than the material 1 mm
 // below it, against 0.4 um for a continuum (Flamant, Johnson 1985 eq. 2.19a
 // between depths a and 1 mm); the mesh stiffness came out near half of ISO's.

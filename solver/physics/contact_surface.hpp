@@ -1,10 +1,10 @@
 #pragma once
-// Surface contact: the paper's linear penalty law, applied to the gap
+// Surface contact: the seed paper's linear penalty law, applied to the gap
 // between the bodies' true surfaces instead of the distance between particle
 // centres.
 //
 // Why: on a square lattice the outermost particles of an inclined flank sit
-// anywhere from 0 to about 0.7 dx below the surface. With the paper's
+// anywhere from 0 to about 0.7 dx below the surface. With the seed paper's
 // criterion (centres closer than r0 = dx) two flanks sliding past each other
 // feel a washboard of bumps of that height, and a clearance smaller than dx
 // (gear backlash is 0.1 mm at dx = 1 mm) does not exist at all: the rack is

@@ -1,5 +1,5 @@
 #pragma once
-// Continuity (the paper's eq.; Monaghan 1992, eq. 2.11):
+// Continuity (the seed paper's eq.; Monaghan 1992, eq. 2.11):
 //   drho_i/dt = sum_j m_j (v_i - v_j) . grad_i W_ij
 // With the kernel-gradient correction on, the same sum is taken with the
 // corrected gradients, which for equal neighbour densities is

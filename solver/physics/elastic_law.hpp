@@ -8,7 +8,7 @@
 //   W = lambda/2 tr(E)^2 + mu E:E   per reference volume,
 // with E_zz = 0 (plane strain): S_zz = lambda tr(E).
 //
-// Updated Lagrangian (the paper's hypoelastic update, stress_rate.hpp):
+// Updated Lagrangian (the seed paper's hypoelastic update, stress_rate.hpp):
 // the energy stored in a linear elastic particle, p^2 / (2K) + S:S / (4G)
 // per current volume.
 //

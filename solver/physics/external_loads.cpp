@@ -13,8 +13,8 @@ double load_ramp(const Simulation& sim) {
 
 // One vector loop: raw pointers, and the energy summed as a simd reduction
 // (a scalar sum kept the loop scalar).
-double external_accelerations(Particles& p, std::size_t lo, std::size_t hi, double ramp, double c,
-                              double dt, bool contact) {
+double external_accelerations(Particles& p, std::size_t lo, std::size_t hi, double ramp,
+                              double damping, double dt, bool contact) {
   double *ext_ax = p.ext_ax.data(), *ext_ay = p.ext_ay.data();
   const double *load_ax = p.load_ax.data(), *load_ay = p.load_ay.data();
   const double *vx = p.vx.data(), *vy = p.vy.data(), *mass = p.mass.data();
@@ -23,10 +23,11 @@ double external_accelerations(Particles& p, std::size_t lo, std::size_t hi, doub
   auto run = [&](auto with_contact) {
 #pragma omp simd reduction(+ : dissipated)
     for (std::size_t i = lo; i < hi; ++i) {
-      const double ax = ramp * load_ax[i] - c * vx[i], ay = ramp * load_ay[i] - c * vy[i];
+      const double ax = ramp * load_ax[i] - damping * vx[i],
+                   ay = ramp * load_ay[i] - damping * vy[i];
       ext_ax[i] = with_contact ? ax + contact_ax[i] : ax;
       ext_ay[i] = with_contact ? ay + contact_ay[i] : ay;
-      dissipated += c * mass[i] * (vx[i] * vx[i] + vy[i] * vy[i]) * dt;
+      dissipated += damping * mass[i] * (vx[i] * vx[i] + vy[i] * vy[i]) * dt;
     }
   };
   if (contact) {

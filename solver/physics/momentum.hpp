@@ -1,5 +1,5 @@
 #pragma once
-// Momentum equation of the updated-Lagrangian method (the paper's eq.;
+// Momentum equation of the updated-Lagrangian method (the seed paper's eq.;
 // Monaghan 1992 eq. 2.12, Gray, Monaghan & Swift 2001 eq. 8):
 //   dv_i/dt = sum_j m_j (sigma_i/rho_i^2 B_i + sigma_j/rho_j^2 B_j
 //                        - Pi_ij I + (R_i + R_j) f_ij^n) . grad_i W_ij

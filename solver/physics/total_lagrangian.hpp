@@ -4,7 +4,7 @@
 // deformation gradient F, first Piola-Kirchhoff stress P from a
 // Saint Venant-Kirchhoff law (plane strain, F_zz = 1). Neighbours never
 // change, and there is no tensile instability because the kernel never sees
-// the deformed spacing. The method switch that compares the paper's
+// the deformed spacing. The method switch that compares the seed paper's
 // updated-Lagrangian form against the form most solid SPH codes now use.
 //
 //   F_i   = sum_j V0_j (x_j - x_i) (x) B_i grad0_i W_ij
@@ -48,7 +48,7 @@ struct ReferencePairs {
   // every particle has the same h): a pair takes h_ij = (h_i + h_j) / 2.
   Column<double> hp;
   // One mass and one sound speed for every particle (a scene of one
-  // material and one spacing: the paper's gear, the plate). The momentum
+  // material and one spacing: the seed paper's gear, the plate). The momentum
   // pass then takes them as constants, two gathers a pair fewer (3 % of the
   // gear's step). The same arithmetic (0.5 (c + c) is c), so the state is
   // the same bit for bit as with the gathers. (The F pass ran slower with

@@ -105,7 +105,7 @@ void velocity_gradient_loop(Simulation& sim, const K& kernel, double half_dt) {
     // revolution; with it the error is third order (spinning-disk tests).
     const double trace_end = lxx + lyy;
     to_mid_step(lxx, lxy, lyx, lyy, half_dt);
-    // Uncorrected: the paper's continuity sum plus the same mid-step shift.
+    // Uncorrected: the seed paper's continuity sum plus the same mid-step shift.
     drho = correct ? continuity_corrected(p.rho[i], lxx, lyy)
                    : drho - p.rho[i] * ((lxx + lyy) - trace_end);
     p.lxx[i] = lxx;

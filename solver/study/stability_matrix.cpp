@@ -13,7 +13,7 @@ using nlohmann::json;
 
 // ---- methods (columns) ------------------------------------------------------
 
-// The paper's method as printed: updated Lagrangian, plain kernel gradients,
+// The seed paper's method as printed: updated Lagrangian, plain kernel gradients,
 // no artificial stress, no hourglass control.
 json ul_paper() {
   return {{"formulation", "updated_lagrangian"},
@@ -122,7 +122,7 @@ void tension_strip(std::vector<Cell>& out) {
   out.push_back(make(id, label, kUlAsCorr, job(ul_as_corr(), "seed_quartic"), "stable", why, true));
   out.push_back(make(id, label, kTl, job(tl(), "seed_quartic"), "stable", why, true));
   out.push_back(make(id, label, kTlHg, job(tl_hg(), "seed_quartic"), "stable", why, true));
-  // Each kernel, with the paper's UL method and with its remedy.
+  // Each kernel, with the seed paper's UL method and with its remedy.
   for (const char* k : {"cubic_spline", "quintic_spline", "wendland_c2"}) {
     for (const Method* m : {&kUl, &kUlAs}) {
       Cell c = make(id, label, *m, job(m->method(), k), m == &kUl ? "fails" : "stable", why, true);
@@ -264,7 +264,7 @@ void time_step(std::vector<Cell>& out) {
   }
 }
 
-// The gear pair at 3x and 10x the paper's speed (full matrix only: the
+// The gear pair at 3x and 10x the seed paper's speed (full matrix only: the
 // paper's model size, 4e-8 s steps over 2 ms).
 void gear(std::vector<Cell>& out) {
   for (double k : {3.0, 10.0}) {
@@ -277,7 +277,7 @@ void gear(std::vector<Cell>& out) {
                    {{"type", "rack_pinion"},
                     {"pinion", {{"omega_rad_s", -15.0 * k}}},
                     {"rack", {{"velocity_m_s", -0.353 * k}}}}},
-                  // The paper's lattice: the study compares the paper's
+                  // The seed paper's lattice: the study compares the seed paper's
                   // methods, some of which (updated Lagrangian) take one
                   // smoothing length only.
                   {"discretization", {{"particles", "lattice"}}},
@@ -296,7 +296,7 @@ void gear(std::vector<Cell>& out) {
     for (const C& c : {C{"surface_penalty", "tl_surface_penalty", "TL, contact surface_penalty"},
                        C{"seed_penalty", "tl_seed_penalty", "TL, contact seed_penalty"},
                        C{"hertz", "tl_hertz", "TL, contact hertz"}}) {
-      // The paper's force and the Hertz-type law act between centres
+      // The seed paper's force and the Hertz-type law act between centres
       // closer than r0 = dx, wider than the 0.1 mm backlash (docs/contact.md).
       const bool centre_reach = std::string(c.contact) != "surface_penalty";
       Cell cell = make(id.str(), label.str(), kTl, job(tl(), c.contact), "stable", why, false);

@@ -112,7 +112,7 @@ json disk_job(const std::string& kernel, bool driven, bool quick) {
 }
 
 // Two steel bars, 1 m/s each; the kernel variant couples them through the
-// SPH sums (updated Lagrangian), the coupling the paper's force replaces.
+// SPH sums (updated Lagrangian), the coupling the seed paper's force replaces.
 json bar_job(bool kernel_coupling, bool quick) {
   json job = {{"name", kernel_coupling ? "bar-impact-kernel" : "bar-impact"},
               {"scene", {{"type", "bar_impact"}, {"length_m", quick ? 0.05 : 0.1}}},
@@ -158,7 +158,7 @@ json hertz_graded_job(bool quick) {
   return job;
 }
 
-// The paper's pair held at its starting position (no rotation, no rack
+// The seed paper's pair held at its starting position (no rotation, no rack
 // speed) while a 1 kN rack force is ramped on and the motion relaxed: the
 // static tooth load of validation.md section 7.
 json gear_static_job() {
@@ -170,7 +170,7 @@ json gear_static_job() {
             {"rack", {{"velocity_m_s", 0.0}, {"load_N", 1000.0}}}}}};
 }
 
-// A static check of the paper's pinion with tooth 0 loaded alone at
+// A static check of the seed paper's pinion with tooth 0 loaded alone at
 // `contact_point` (1 kN rack load), at the default particles.
 json gear_fillet_job(const std::string& contact_point) {
   return {{"name", "gear-fillet-" + contact_point},
