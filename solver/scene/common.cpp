@@ -1,4 +1,7 @@
+// What every scene builder shares (builders.hpp): its opening, bodies and
+// particles, spacings, outlines and the static relaxation.
 #include <algorithm>
+#include <numbers>
 
 #include "solver/geometry/body_fitted.hpp"
 #include "solver/scene/builders.hpp"
@@ -11,6 +14,13 @@ Material read_material(const nlohmann::json& m) {
   mat.nu = m.at("nu").get<double>();
   mat.rho0 = m.at("rho_kg_m3").get<double>();
   return mat;
+}
+
+Scene start_scene(const std::string& type, const SceneInput& in) {
+  Scene scene;
+  scene.type = type;
+  scene.sim.discretization = in.discretization;
+  return scene;
 }
 
 void add_body(Simulation& sim, const std::string& name, const Material& material) {
@@ -74,11 +84,52 @@ SceneSpacings lattice_scene_spacings(Discretization& d, double default_dx) {
   if (d.dx <= 0) d.dx = default_dx;
   out.dx = d.dx;
   out.fine = out.fitted && d.fine_dx > 0 ? d.fine_dx : out.dx;
-  if (out.fine > out.dx) {
+  out.grading = d.grading > 0 ? d.grading : geometry::kDefaultGrading;
+  require_fine_within_bulk(out);
+  return out;
+}
+
+SceneSpacings graded_scene_spacings(Discretization& d, bool fitted, double default_dx,
+                                    double default_fine) {
+  SceneSpacings out;
+  out.fitted = fitted;
+  if (d.dx <= 0) d.dx = default_dx;
+  out.dx = d.dx;
+  out.fine = fitted ? (d.fine_dx > 0 ? d.fine_dx : std::min(d.dx, default_fine)) : d.dx;
+  out.grading = d.grading > 0 ? d.grading : geometry::kDefaultGrading;
+  return out;
+}
+
+void require_fine_within_bulk(const SceneSpacings& spacings) {
+  if (spacings.fine > spacings.dx) {
     throw JobError("/discretization/fine_spacing_m",
                    "the fine spacing must not exceed the bulk spacing");
   }
-  return out;
+}
+
+const char* layout_name(bool fitted) {
+  return fitted ? "body_fitted" : "lattice";
+}
+
+void describe_spacings(nlohmann::json& description, const SceneSpacings& spacings) {
+  description["particles"] = layout_name(spacings.fitted);
+  description["fine_spacing_m"] = spacings.fine;
+  description["bulk_spacing_m"] = spacings.dx;
+}
+
+Outline polygon_outline(const std::string& name, int body, const geometry::Polygon& polygon) {
+  Outline o;
+  o.name = name;
+  o.body = body;
+  for (const geometry::Point& q : polygon) o.points.push_back({q.x, q.y});
+  return o;
+}
+
+void relax_to_static(Scene& scene, double omega_slowest) {
+  Simulation& sim = scene.sim;
+  sim.damping_1_s = omega_slowest;
+  sim.load_ramp_s = 10.0 * 2.0 * std::numbers::pi / omega_slowest;
+  scene.default_end_s = 2.0 * sim.load_ramp_s;
 }
 
 int add_body_fitted(Simulation& sim, const geometry::Region& region,

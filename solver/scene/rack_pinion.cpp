@@ -6,16 +6,13 @@
 // and may carry a resisting force.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
-#include <set>
 #include <sstream>
 
 #include "solver/geometry/gear_profile.hpp"
 #include "solver/geometry/lattice_fill.hpp"
 #include "solver/geometry/mesh_placement.hpp"
 #include "solver/geometry/rack_profile.hpp"
-#include "solver/physics/contact_near_field.hpp"
 #include "solver/scene/builders.hpp"
 #include "solver/scene/rack_pinion.hpp"
 
@@ -33,6 +30,15 @@ double deg(double d) {
   return d * kPi / 180.0;
 }
 
+double pitch_angle(const GearLayout& L) {
+  return 2.0 * kPi / L.teeth;
+}
+
+// Clockwise (omega <= 0): the pinion turns the way the paper's does.
+bool clockwise(const GearLayout& L) {
+  return L.omega <= 0;
+}
+
 std::size_t nearest(const Particles& p, std::size_t begin, std::size_t end, Point q) {
   std::size_t best = begin;
   double d2 = 1e300;
@@ -44,14 +50,6 @@ std::size_t nearest(const Particles& p, std::size_t begin, std::size_t end, Poin
     }
   }
   return best;
-}
-
-Outline to_outline(const std::string& name, int body, const geometry::Polygon& poly) {
-  Outline o;
-  o.name = name;
-  o.body = body;
-  for (const Point& q : poly) o.points.push_back({q.x, q.y});
-  return o;
 }
 
 // Teeth (integer positions u, in pitches from the mesh) whose swept interval
@@ -97,127 +95,13 @@ std::vector<int> choose_rack_offsets(const nlohmann::json& choice, const GearLay
   return offsets;
 }
 
-// History columns (docs/gears.md, What a run reports): the rack's motion
-// and transmission error, the hub's rate and torque, the contact force,
-// and per modelled tooth its root stress (fillet particles and section
-// bending) and contact force. Particles of no tooth have tooth_of = INT_MIN.
-void add_gear_histories(Scene& scene, const GearLayout& L, const std::vector<int>& tooth_of,
-                        double e_star) {
-  const Particles& p = scene.sim.particles;
-  const double b = L.face_width_m, r = L.pitch_radius;
-  const std::size_t rb0 = scene.sim.bodies[1].begin, rb1 = scene.sim.bodies[1].end;
-  auto rack_mean = [rb0, rb1](const Column<double>& v) {
-    double sum = 0;
-    for (std::size_t i = rb0; i < rb1; ++i) sum += v[i];
-    return sum / static_cast<double>(rb1 - rb0);
-  };
-  double x_rack0 = 0;
-  for (std::size_t i = rb0; i < rb1; ++i) x_rack0 += p.x[i];
-  x_rack0 /= static_cast<double>(rb1 - rb0);
-  scene.columns.push_back(
-      {"rack_vx_m_s", [rack_mean](const Simulation& s2) { return rack_mean(s2.particles.vx); }});
-  // Transmission error: the rack's displacement minus ideal rolling r theta
-  // (theta = omega t when the hub is held at omega).
-  scene.columns.push_back({"transmission_error_m", [rack_mean, x_rack0, r](const Simulation& s2) {
-                             return rack_mean(s2.particles.x) - x_rack0 - r * s2.motions[1].angle;
-                           }});
-  scene.columns.push_back(
-      {"pinion_omega_rad_s", [](const Simulation& s2) { return s2.motions[1].omega; }});
-  // Torque the teeth put on the hub, reversed, per gear (face width b): what
-  // a drive holding the speed supplies (the hub's own inertia aside).
-  scene.columns.push_back({"pinion_torque_Nm", [b, cx = L.cx, cy = L.cy](const Simulation& s2) {
-                             const Particles& q = s2.particles;
-                             double t = 0;
-                             for (std::size_t i = 0; i < q.n; ++i) {
-                               if (q.motion[i] != 1) continue;
-                               const double fx = q.mass[i] * (q.ax[i] + q.ext_ax[i]);
-                               const double fy = q.mass[i] * (q.ay[i] + q.ext_ay[i]);
-                               t -= (q.x[i] - cx) * fy - (q.y[i] - cy) * fx;
-                             }
-                             return t * b;
-                           }});
-  scene.columns.push_back({"contact_force_N", [b](const Simulation& s2) {
-                             const ContactState& cs = s2.contact_state;
-                             return cs.force_x.size() > 1
-                                        ? b * std::hypot(cs.force_x[1], cs.force_y[1])
-                                        : 0.0;
-                           }});
-  // Per tooth, the stress recovered on its true fillets and across its
-  // critical section (RootMonitor: once per row, whatever the columns).
-  constexpr double kDeg = 180.0 / kPi;
-  for (std::size_t t = 0; t < L.pinion_teeth.size(); ++t) {
-    const int k = L.pinion_teeth[t];
-    const std::string sk = "_t" + std::to_string(k);
-    auto col = [&](const std::string& name, auto read) {
-      scene.columns.push_back({name, [roots = L.roots, t, read](const Simulation& s2) {
-                                 return read(roots->at(s2)[t]);
-                               }});
-    };
-    // The larger sigma_1 at the two 30-degree points (ISO 6336-3's section).
-    col("root_stress" + sk + "_Pa", [](const ToothRootState& st) { return st.root_stress_Pa; });
-    // Nominal bending stress 6 M / s^2 on the critical section: what ISO's
-    // Y_F describes, before the fillet's stress concentration Y_S.
-    col("root_bending" + sk + "_Pa",
-        [](const ToothRootState& st) { return st.section_nominal_bending_Pa; });
-    col("fillet_tension_peak" + sk + "_Pa",
-        [](const ToothRootState& st) { return st.fillet.tension.stress_Pa; });
-    col("fillet_tension_peak_radius" + sk + "_m",
-        [](const ToothRootState& st) { return st.fillet.tension.radius_m; });
-    col("fillet_tension_peak_angle" + sk + "_deg",
-        [kDeg](const ToothRootState& st) { return kDeg * st.fillet.tension.angle_rad; });
-    col("fillet_iso30" + sk + "_Pa",
-        [](const ToothRootState& st) { return st.fillet.tension.at_iso30_Pa; });
-    col("fillet_compression_peak" + sk + "_Pa",
-        [](const ToothRootState& st) { return st.fillet.compression.stress_Pa; });
-    col("fillet_compression_peak_radius" + sk + "_m",
-        [](const ToothRootState& st) { return st.fillet.compression.radius_m; });
-    col("fillet_compression_peak_angle" + sk + "_deg",
-        [kDeg](const ToothRootState& st) { return kDeg * st.fillet.compression.angle_rad; });
-    scene.columns.push_back(
-        {"tooth_force_t" + std::to_string(k) + "_N", [tooth_of, k, b](const Simulation& s2) {
-           const Particles& q = s2.particles;
-           double fx = 0, fy = 0;
-           for (std::size_t i = 0; i < q.n; ++i) {
-             if (tooth_of[i] != k) continue;
-             fx += q.mass[i] * q.contact_ax[i];
-             fy += q.mass[i] * q.contact_ay[i];
-           }
-           return b * std::hypot(fx, fy);
-         }});
-    // A Hertz sub-model on the resolved load: the line-contact peak pressure
-    // for the tooth's contact force per unit face width and the curvature of
-    // its flank where the force acts (force-weighted), the rack flank being
-    // straight. The basis of ISO 6336-2's sigma_H; not read from particles.
-    scene.columns.push_back(
-        {"contact_pressure" + sk + "_Pa", [tooth_of, k, e_star](const Simulation& s2) {
-           const Particles& q = s2.particles;
-           double fx = 0, fy = 0, wsum = 0, ksum = 0;
-           for (std::size_t i = 0; i < q.n; ++i) {
-             if (tooth_of[i] != k) continue;
-             const double ax = q.contact_ax[i], ay = q.contact_ay[i];
-             fx += q.mass[i] * ax;
-             fy += q.mass[i] * ay;
-             const double w = q.mass[i] * std::hypot(ax, ay);
-             wsum += w;
-             ksum += w * q.surf_curvature[i];
-           }
-           return wsum > 0 ? physics::hertz_peak_pressure(std::hypot(fx, fy), e_star, ksum / wsum)
-                           : 0.0;
-         }});
-  }
-}
+// --- The gear pair as the job gives it.
 
-}  // namespace
-
-double pinion_rim_depth_m(const nlohmann::json& pinion) {
-  if (pinion.contains("rim_depth_mm")) return 1e-3 * pinion.at("rim_depth_mm").get<double>();
-  return 1e-3 * pinion.at("module_mm").get<double>();
-}
-
-Scene build_rack_pinion(const SceneInput& in) {
-  const nlohmann::json& s = in.scene;
-  const nlohmann::json& pj = s.at("pinion");
-  const nlohmann::json& rj = s.at("rack");
+// The pinion's size and drive, the rack's motion and load, and the run's
+// length (which decides the teeth to model).
+GearLayout read_gear_layout(const SceneInput& in) {
+  const nlohmann::json& pj = in.scene.at("pinion");
+  const nlohmann::json& rj = in.scene.at("rack");
   GearLayout L;
   L.teeth = pj.at("teeth").get<int>();
   L.module_m = 1e-3 * pj.at("module_mm").get<double>();
@@ -228,7 +112,11 @@ Scene build_rack_pinion(const SceneInput& in) {
   L.rack_velocity = rj.at("velocity_m_s").get<double>();
   L.load_N = rj.at("load_N").get<double>();
   L.end_s = in.end_s > 0 ? in.end_s : 0.04;
+  return L;
+}
 
+// The pinion the job's ISO 53 rack cutter generates (geometry/gear_profile.hpp).
+geometry::PinionGeometry generate_pinion(const nlohmann::json& pj, const GearLayout& L) {
   geometry::BasicRack tool;
   tool.module_m = L.module_m;
   tool.pressure_angle_rad = L.pressure_angle;
@@ -240,13 +128,16 @@ Scene build_rack_pinion(const SceneInput& in) {
   ps.tool = tool;
   ps.profile_shift = pj.at("profile_shift").get<double>();
   ps.backlash_m = 1e-3 * pj.at("backlash_mm").get<double>();
-  std::optional<geometry::PinionGeometry> pinion_opt;
   try {
-    pinion_opt.emplace(ps);
+    return geometry::PinionGeometry(ps);
   } catch (const std::invalid_argument& e) {
     throw JobError("/scene/pinion", std::string("cannot generate this pinion: ") + e.what());
   }
-  const geometry::PinionGeometry& pinion = *pinion_opt;
+}
+
+// The pinion's circles, its path of contact with the rack, and the form
+// factors its root stress is compared with (ISO 6336-3, Lewis).
+void set_pinion_references(GearLayout& L, const geometry::PinionGeometry& pinion) {
   L.pitch_radius = pinion.pitch_radius();
   L.base_radius = pinion.base_radius();
   L.tip_radius = pinion.tip_radius();
@@ -263,81 +154,118 @@ Scene build_rack_pinion(const SceneInput& in) {
     L.iso_by_radius.push_back(gear::iso_tooth_form(pinion, radius));
   }
   L.lewis_Y = L.teeth >= 12 ? gear::lewis_form_factor(L.teeth) : 0.0;
+}
 
-  Scene scene;
-  scene.type = "rack_pinion";
-  Simulation& sim = scene.sim;
-  sim.discretization = in.discretization;
-  // Spacings follow the gear, not a number: the bulk a quarter of the
-  // module (the paper's 1 mm at module 4), and body-fitted particles a
-  // seventh of the root fillet radius rho_F at the fillets, where the
-  // stress varies over that length: the fillet peak within 5 % of a
-  // converged finite-element solution (docs/gears.md: rho_F/5 reads it
-  // 12 % low). The active flanks, where the teeth touch, take 1.5 times
-  // that on the pinion and twice on the rack.
+// --- Particle spacings.
+
+struct GearSpacings {
+  bool fitted = false;
+  double dx = 0.0;          // bulk spacing (lattice: the only one)
+  double fine = 0.0;        // at the fillets (lattice: dx)
+  double flank = 0.0;       // at the pinion's active flanks
+  double rack_flank = 0.0;  // at the rack's active flanks
+  double grading = 0.0;
+  double support = 0.0;  // the kernel's reach at the bulk spacing [m]
+};
+
+// Spacings follow the gear, not a number: the bulk a quarter of the
+// module (the paper's 1 mm at module 4), and body-fitted particles a
+// seventh of the root fillet radius rho_F at the fillets, where the
+// stress varies over that length: the fillet peak within 5 % of a
+// converged finite-element solution (docs/gears.md: rho_F/5 reads it
+// 12 % low). The active flanks, where the teeth touch, take 1.5 times
+// that on the pinion and twice on the rack.
+GearSpacings choose_spacings(Simulation& sim, const Discretization& job, GearLayout& L) {
   const bool fitted =
-      particle_layout(in.discretization, ParticleLayout::BodyFitted) == ParticleLayout::BodyFitted;
-  Discretization& disc = sim.discretization;
-  if (disc.dx <= 0) disc.dx = 0.25 * L.module_m;
-  const double dx = disc.dx;
-  const double fine =
-      fitted ? (disc.fine_dx > 0 ? disc.fine_dx : std::min(dx, L.iso_pitch.rho_F / 7.0)) : dx;
-  const double flank = std::min(dx, kPinionFlankOverFine * fine);
-  const double rack_flank = std::min(dx, kRackFlankOverFine * fine);
-  const double grading = disc.grading > 0 ? disc.grading : geometry::kDefaultGrading;
-  const double support = kernel_support(sim.discretization.kernel) * sim.h();
-  if (dx > 0.5 * L.module_m) {
+      particle_layout(job, ParticleLayout::BodyFitted) == ParticleLayout::BodyFitted;
+  const SceneSpacings base =
+      graded_scene_spacings(sim.discretization, fitted, 0.25 * L.module_m, L.iso_pitch.rho_F / 7.0);
+  GearSpacings sp;
+  sp.fitted = base.fitted;
+  sp.dx = base.dx;
+  sp.fine = base.fine;
+  sp.flank = std::min(sp.dx, kPinionFlankOverFine * sp.fine);
+  sp.rack_flank = std::min(sp.dx, kRackFlankOverFine * sp.fine);
+  sp.grading = base.grading;
+  sp.support = kernel_support(sim.discretization.kernel) * sim.h();
+  if (sp.dx > 0.5 * L.module_m) {
     throw JobError("/discretization", "the spacing must be at most half the module (" +
                                           std::to_string(0.5 * L.module_m) +
                                           " m) to put particles across a tooth");
   }
-  if (fine > dx) {
-    throw JobError(disc.fine_dx > 0 ? "/discretization/fine_spacing_m" : "/discretization",
-                   "the fine spacing must not exceed the bulk spacing");
-  }
-  L.quasi_static = s.at("quasi_static").get<bool>();
-  const bool clockwise = L.omega <= 0;
+  require_fine_within_bulk(base);
+  L.fitted = sp.fitted;
+  L.spacing = sp.dx;
+  L.fine_spacing = sp.fine;
+  return sp;
+}
 
-  // --- Which teeth engage: the engagement window of a tooth axis, in
-  // pitches from the mesh position, is the path of contact seen from the
-  // pinion (start -> end as the driven teeth roll through) plus half a pitch
-  // of margin on each side.
+// --- Which teeth engage, and are modelled.
+
+struct ModelledTeeth {
+  std::vector<int> pinion;        // numbered from the one in mesh at t = 0
+  bool whole_pinion = false;      // all z teeth: a full pinion on a bored hub
+  std::vector<int> rack_offsets;  // u - 1/2 from the pitch point, ascending
+  // The engagement window [lo, hi] of a tooth axis and how far pinion and
+  // rack travel in the run, in pitches.
+  double lo = 0.0, hi = 0.0, turn = 0.0, rack_turn = 0.0;
+};
+
+// The engagement window of a tooth axis, in pitches from the mesh position,
+// is the path of contact seen from the pinion (start -> end as the driven
+// teeth roll through) plus half a pitch of margin on each side.
+ModelledTeeth engagement_window(const GearLayout& L, const geometry::PinionGeometry& pinion) {
   const double r = L.pitch_radius, rb = L.base_radius, alpha = L.pressure_angle;
-  const double pitch_angle = 2.0 * kPi / L.teeth;
-  const double before = (r * std::sin(alpha) - L.path.start_from_T) / rb / pitch_angle + 0.5;
-  const double after = (L.path.end_from_T - r * std::sin(alpha)) / rb / pitch_angle + 0.5;
-  const double turn = L.omega * L.end_s / pitch_angle;  // pitches turned (CCW positive)
+  const double before = (r * std::sin(alpha) - L.path.start_from_T) / rb / pitch_angle(L) + 0.5;
+  const double after = (L.path.end_from_T - r * std::sin(alpha)) / rb / pitch_angle(L) + 0.5;
+  ModelledTeeth t;
+  t.turn = L.omega * L.end_s / pitch_angle(L);  // pitches turned (CCW positive)
   // Clockwise (omega < 0): teeth arrive from the +x side (positive axis
   // angles) and leave to -x; the window is [-after, before]. Mirror for CCW.
-  const double lo = L.omega <= 0 ? -after : -before, hi = L.omega <= 0 ? before : after;
+  t.lo = clockwise(L) ? -after : -before;
+  t.hi = clockwise(L) ? before : after;
+  // Rack teeth, swept by the rack's own travel.
+  t.rack_turn = L.rack_velocity * L.end_s / pinion.spec().tool.pitch();
+  return t;
+}
+
+// The teeth of both gears to model: those that engage during the run, a
+// static check's, or the job's choice. Records them in L.
+ModelledTeeth choose_modelled_teeth(const nlohmann::json& s, GearLayout& L,
+                                    const geometry::PinionGeometry& pinion) {
+  const nlohmann::json& pj = s.at("pinion");
+  const nlohmann::json& rj = s.at("rack");
+  ModelledTeeth t = engagement_window(L, pinion);
   // A static check loads tooth 0 alone, as ISO 6336's single-pair numbers
   // assume: "auto" then models it with its two neighbours (the rim beside
   // its fillets), against the one rack tooth that meets its driving flank.
   const bool static_auto = L.quasi_static && pj.at("modelled_teeth") == "auto";
-  std::vector<int> pinion_teeth =
-      static_auto ? std::vector<int>{-1, 0, 1}
-                  : choose_pinion_teeth(pj.at("modelled_teeth"), L, turn, lo, hi);
-  if (pinion_teeth.empty()) pinion_teeth.push_back(0);
-  if (static_cast<int>(pinion_teeth.size()) > L.teeth) {
-    pinion_teeth.resize(static_cast<std::size_t>(L.teeth));
+  t.pinion = static_auto ? std::vector<int>{-1, 0, 1}
+                         : choose_pinion_teeth(pj.at("modelled_teeth"), L, t.turn, t.lo, t.hi);
+  if (t.pinion.empty()) t.pinion.push_back(0);
+  if (static_cast<int>(t.pinion.size()) > L.teeth) {
+    t.pinion.resize(static_cast<std::size_t>(L.teeth));
   }
-  const bool whole_pinion = static_cast<int>(pinion_teeth.size()) == L.teeth;
-  L.pinion_teeth = pinion_teeth;
+  t.whole_pinion = static_cast<int>(t.pinion.size()) == L.teeth;
+  L.pinion_teeth = t.pinion;
 
-  // Rack teeth, swept by the rack's own travel.
-  const double rack_turn = L.rack_velocity * L.end_s / pinion.spec().tool.pitch();
   // The rack tooth left of tooth 0 (space 1) meets a clockwise pinion's
   // driving flank, the one right of it (space 0) a counter-clockwise one's.
-  const std::vector<int> rack_offsets =  // u - 1/2
-      L.quasi_static && rj.at("modelled_teeth") == "auto"
-          ? std::vector<int>{clockwise ? -1 : 0}
-          : choose_rack_offsets(rj.at("modelled_teeth"), L, rack_turn, lo, hi);
-  const int m_min = rack_offsets.front(), m_max = rack_offsets.back();
+  t.rack_offsets = L.quasi_static && rj.at("modelled_teeth") == "auto"
+                       ? std::vector<int>{clockwise(L) ? -1 : 0}
+                       : choose_rack_offsets(rj.at("modelled_teeth"), L, t.rack_turn, t.lo, t.hi);
+  const int m_min = t.rack_offsets.front(), m_max = t.rack_offsets.back();
   for (int m = m_min; m <= m_max; ++m) L.rack_teeth.push_back(m - m_min);
+  return t;
+}
 
+// The modelled rack segment: its teeth cut to the pinion's tool.
+geometry::RackGeometry build_rack(const nlohmann::json& rj, const GearLayout& L,
+                                  const geometry::PinionGeometry& pinion,
+                                  const ModelledTeeth& teeth) {
   geometry::RackSpec rs;
-  rs.profile = tool;
-  rs.teeth = m_max - m_min + 1;
+  rs.profile = pinion.spec().tool;
+  rs.teeth = teeth.rack_offsets.back() - teeth.rack_offsets.front() + 1;
   // Two modules unless given: the rack's body, like the pinion's rim,
   // follows the teeth (a fixed 8 mm made a module-3 rack's share of the mesh
   // compliance 40 % larger than a module-4 one's).
@@ -345,294 +273,451 @@ Scene build_rack_pinion(const SceneInput& in) {
                             ? 1e-3 * rj.at("back_thickness_mm").get<double>()
                             : 2.0 * L.module_m;
   rs.backlash_m = 1e-3 * rj.at("backlash_mm").get<double>();
-  std::optional<geometry::RackGeometry> rack_opt;
   try {
-    rack_opt.emplace(rs);
+    return geometry::RackGeometry(rs);
   } catch (const std::invalid_argument& e) {
     throw JobError("/scene/rack", std::string("cannot build this rack: ") + e.what());
   }
-  const geometry::RackGeometry& rack = *rack_opt;
+}
 
-  // --- Placement: pinion centre at the origin, tooth 0 in rack space
-  // -m_min. Close the play on the driving flanks so the teeth start in
-  // contact (the pinion's pitch line is 2 % faster than the rack: it catches
-  // up at once), or keep it shared ("centred").
-  const double play = ps.backlash_m + rs.backlash_m;
+// --- Placement: pinion centre at the origin, tooth 0 in the rack space
+// before the first modelled rack tooth.
+
+// Close the play on the driving flanks so the teeth start in contact (the
+// pinion's pitch line is 2 % faster than the rack: it catches up at once),
+// or keep it shared ("centred"): the pinion's extra turn [rad].
+double closing_rotation(const nlohmann::json& s, const GearLayout& L,
+                        const geometry::PinionGeometry& pinion,
+                        const geometry::RackGeometry& rack) {
+  const double play = pinion.spec().backlash_m + rack.spec().backlash_m;
   double phase = 0.0;
   if (s.at("mesh_phase").get<std::string>() == "contact") {
-    phase = (L.omega <= 0 ? -1.0 : 1.0) * 0.5 * play / r;
+    phase = (L.omega <= 0 ? -1.0 : 1.0) * 0.5 * play / L.pitch_radius;
   }
-  // A static check is placed by its contact point (docs/gears.md): the rack
-  // travels, and the pinion rolls with it, until tooth 0's driving flank
-  // meets the rack at that radius.
-  double travel = 0.0;
+  return phase;
+}
+
+// A static check is placed by its contact point (docs/gears.md): the rack
+// travels, and the pinion rolls with it, until tooth 0's driving flank
+// meets the rack at that radius. Records the point in L; 0 for a dynamic run.
+double travel_to_contact_point(const nlohmann::json& s, GearLayout& L,
+                               const geometry::PinionGeometry& pinion, double phase) {
   if (s.contains("contact_point") && !L.quasi_static) {
     throw JobError("/scene/contact_point",
                    "places a static check: it needs \"quasi_static\": true (a dynamic run "
                    "starts where the mesh is)");
   }
-  if (L.quasi_static) {
-    const nlohmann::json cp = s.contains("contact_point") ? s.at("contact_point") : "pitch";
-    L.contact_point = cp.is_string() ? cp.get<std::string>() : "radius";
-    L.load_radius = cp.is_string() ? gear::path_point_radius(pinion, L.path, cp.get<std::string>())
-                                   : 1e-3 * cp.get<double>();
-    const double rb0 = pinion.base_radius();
-    const double g =
-        L.load_radius > rb0 ? std::sqrt(L.load_radius * L.load_radius - rb0 * rb0) : -1;
-    if (!(g >= L.path.start_from_T - 1e-12 && g <= L.path.end_from_T + 1e-12)) {
-      throw JobError("/scene/contact_point",
-                     "the contact radius must lie on the path of contact, from " +
-                         std::to_string(1e3 * std::hypot(rb0, L.path.start_from_T)) + " to " +
-                         std::to_string(1e3 * L.tip_radius) + " mm on this pinion");
-    }
-    travel = geometry::travel_for_contact(pinion, 0, L.load_radius, phase, clockwise);
+  if (!L.quasi_static) return 0.0;
+  const nlohmann::json cp = s.contains("contact_point") ? s.at("contact_point") : "pitch";
+  L.contact_point = cp.is_string() ? cp.get<std::string>() : "radius";
+  L.load_radius = cp.is_string() ? gear::path_point_radius(pinion, L.path, cp.get<std::string>())
+                                 : 1e-3 * cp.get<double>();
+  const double rb0 = pinion.base_radius();
+  const double g = L.load_radius > rb0 ? std::sqrt(L.load_radius * L.load_radius - rb0 * rb0) : -1;
+  if (!(g >= L.path.start_from_T - 1e-12 && g <= L.path.end_from_T + 1e-12)) {
+    throw JobError("/scene/contact_point",
+                   "the contact radius must lie on the path of contact, from " +
+                       std::to_string(1e3 * std::hypot(rb0, L.path.start_from_T)) + " to " +
+                       std::to_string(1e3 * L.tip_radius) + " mm on this pinion");
   }
+  return geometry::travel_for_contact(pinion, 0, L.load_radius, phase, clockwise(L));
+}
+
+// Pinion centre at the origin, tooth 0 in the rack space before the first
+// modelled rack tooth, turned by `phase`; the rack moved by `travel`.
+geometry::MeshPlacement place_gears(GearLayout& L, const geometry::PinionGeometry& pinion,
+                                    const geometry::RackGeometry& rack, const ModelledTeeth& teeth,
+                                    double phase, double travel) {
   geometry::MeshPlacement place =
-      geometry::place_in_mesh(pinion, rack, {0.0, 0.0}, 0, -m_min, travel);
+      geometry::place_in_mesh(pinion, rack, {0.0, 0.0}, 0, -teeth.rack_offsets.front(), travel);
   place.pinion.angle += phase;
   L.cx = 0.0;
   L.cy = 0.0;
+  return place;
+}
 
+// --- Outlines.
+
+struct GearOutlines {
+  double r_drive = 0.0;            // inside: the driven hub ring
+  double r_inner = 0.0;            // the hub ring's inner edge (a whole pinion's bore; <= 0: none)
+  geometry::Polygon pinion, rack;  // in the world
+};
+
+// The modelled pinion sector (or the whole pinion on its bore) down to the
+// inner edge of its hub ring, a kernel support below its deformable rim,
+// and the rack segment, as placed.
+GearOutlines gear_outlines(const nlohmann::json& pj, const GearLayout& L,
+                           const geometry::PinionGeometry& pinion,
+                           const geometry::RackGeometry& rack, const ModelledTeeth& teeth,
+                           const geometry::MeshPlacement& place, double support) {
+  GearOutlines o;
   const double rim_depth = pinion_rim_depth_m(pj);
-  const double r_drive = L.root_radius - rim_depth;  // inside: driven hub ring
-  const double r_inner = whole_pinion ? std::max(0.0, r_drive - support) : r_drive - support;
-  if (r_inner <= 0.0 && !whole_pinion) {
+  o.r_drive = L.root_radius - rim_depth;
+  o.r_inner = teeth.whole_pinion ? std::max(0.0, o.r_drive - support) : o.r_drive - support;
+  if (o.r_inner <= 0.0 && !teeth.whole_pinion) {
     throw JobError("/scene/pinion/rim_depth_mm", "the rim and hub ring reach the pinion centre");
   }
-  geometry::Polygon pinion_poly =
-      whole_pinion ? pinion.outline()
-                   : pinion.sector_outline(pinion_teeth.front(), pinion_teeth.back(), r_inner);
-  pinion_poly = geometry::transformed(pinion_poly, place.pinion);
-  const geometry::Polygon rack_poly = geometry::transformed(rack.outline(), place.rack);
+  o.pinion = teeth.whole_pinion
+                 ? pinion.outline()
+                 : pinion.sector_outline(teeth.pinion.front(), teeth.pinion.back(), o.r_inner);
+  o.pinion = geometry::transformed(o.pinion, place.pinion);
+  o.rack = geometry::transformed(rack.outline(), place.rack);
+  return o;
+}
 
-  // --- Particles, on one world grid so the bodies never share a point.
-  const Material mat_p =
-      read_material(s.contains("pinion_material") ? s.at("pinion_material") : s.at("material"));
-  const Material mat_r =
-      read_material(s.contains("rack_material") ? s.at("rack_material") : s.at("material"));
-  // Held at omega, or turned by a torque (attached inertia set below, from
-  // the particles).
+// --- Particles, on one world grid so the bodies never share a point.
+
+// Held at omega, or turned by a torque (attached inertia set with the
+// particles, set_hub_inertia); the rack's back guided along x.
+void add_gear_motions(Simulation& sim, const GearLayout& L) {
   sim.motions.push_back(L.torque_Nm ? Motion::torque_rotation("pinion hub", L.cx, L.cy, L.omega,
                                                               *L.torque_Nm / L.face_width_m, 0.0)
                                     : Motion::rotation("pinion hub", L.cx, L.cy, L.omega));
   sim.motions.push_back(Motion::guided_x("rack back"));
-  const Point origin{0.0, 0.0};
-  const double back_y = place.rack.apply({0.0, rack.back_y()}).y;
-  auto pinion_motion = [&](double x, double y) {
-    return std::hypot(x - L.cx, y - L.cy) < r_drive ? 1 : 0;
+}
+
+// The force the rack puts on tooth k's driving flank, roughly: along +x
+// on tooth 0 of a clockwise pinion, turned with the tooth.
+Point load_on_tooth(const GearLayout& L, int k) {
+  return geometry::rotate({clockwise(L) ? 1.0 : -1.0, 0.0}, k * pitch_angle(L));
+}
+
+// Body-fitted pinion: fine at every modelled tooth's two fillets and its
+// driving flank.
+geometry::SpacingField pinion_spacing(const GearLayout& L, const geometry::PinionGeometry& pinion,
+                                      const geometry::MeshPlacement& place,
+                                      const GearSpacings& sp) {
+  geometry::SpacingField field(sp.dx, sp.grading);
+  for (int k : L.pinion_teeth) {
+    const gear::ToothFillets f =
+        gear::tooth_fillets(pinion, k, place.pinion, load_on_tooth(L, k), 0.25 * sp.fine);
+    field.add_feature(f.tension.points, sp.fine);
+    field.add_feature(f.compression.points, sp.fine);
+    field.add_feature(gear::loaded_flank(pinion, k, place.pinion, load_on_tooth(L, k)), sp.flank);
+  }
+  return field;
+}
+
+// The pinion's particles: the hub ring inside r_drive is driven (motion 1).
+void fill_pinion(Simulation& sim, const GearLayout& L, const geometry::PinionGeometry& pinion,
+                 const geometry::MeshPlacement& place, const GearOutlines& o,
+                 const GearSpacings& sp, bool whole_pinion, const Material& mat) {
+  auto motion = [&](double x, double y) {
+    return std::hypot(x - L.cx, y - L.cy) < o.r_drive ? 1 : 0;
   };
-  auto rack_motion = [&](double, double y) { return y < back_y + support ? 2 : 0; };
-  // The force the rack puts on tooth k's driving flank, roughly: along +x
-  // on tooth 0 of a clockwise pinion, turned with the tooth.
-  auto load_on_tooth = [&](int k) {
-    return geometry::rotate({clockwise ? 1.0 : -1.0, 0.0}, k * pitch_angle);
-  };
-  L.fitted = fitted;
-  L.spacing = dx;
-  L.fine_spacing = fine;
-  add_body(sim, "pinion", mat_p);
-  if (fitted) {
-    // Fine at every modelled tooth's two fillets and its driving flank.
-    geometry::SpacingField field(dx, grading);
-    for (int k : pinion_teeth) {
-      const gear::ToothFillets f =
-          gear::tooth_fillets(pinion, k, place.pinion, load_on_tooth(k), 0.25 * fine);
-      field.add_feature(f.tension.points, fine);
-      field.add_feature(f.compression.points, fine);
-      field.add_feature(gear::loaded_flank(pinion, k, place.pinion, load_on_tooth(k)), flank);
-    }
+  add_body(sim, "pinion", mat);
+  if (sp.fitted) {
     std::vector<geometry::Polygon> bore;
-    if (whole_pinion && r_inner > 0.0) {
-      bore.push_back(geometry::circle({L.cx, L.cy}, r_inner, ps.chord_tolerance_m));
+    if (whole_pinion && o.r_inner > 0.0) {
+      bore.push_back(geometry::circle({L.cx, L.cy}, o.r_inner, pinion.spec().chord_tolerance_m));
     }
-    add_body_fitted(sim, geometry::make_region(pinion_poly, bore), field, pinion_motion);
+    add_body_fitted(sim, geometry::make_region(o.pinion, bore),
+                    pinion_spacing(L, pinion, place, sp), motion);
   } else {
-    for (const Point& q : geometry::fill_lattice(pinion_poly, dx, origin)) {
-      if (whole_pinion && std::hypot(q.x - L.cx, q.y - L.cy) < r_inner) continue;  // bore
-      add_particle(sim, q.x, q.y, pinion_motion(q.x, q.y));
+    for (const Point& q : geometry::fill_lattice(o.pinion, sp.dx, {0.0, 0.0})) {
+      if (whole_pinion && std::hypot(q.x - L.cx, q.y - L.cy) < o.r_inner) continue;  // bore
+      add_particle(sim, q.x, q.y, motion(q.x, q.y));
     }
   }
   end_body(sim);
-  add_body(sim, "rack", mat_r);
-  if (fitted) {
-    // Fine along the rack flanks that the pinion's driving flanks meet:
-    // outline edges facing them (outward normal against the load's x).
-    geometry::SpacingField field(dx, grading);
-    const double side = clockwise ? 1.0 : -1.0;
-    std::vector<Point> run;
-    const std::size_t m = rack_poly.size();
-    for (std::size_t k = 0; k <= m; ++k) {
-      const Point a = rack_poly[k % m], b = rack_poly[(k + 1) % m];
-      const Point e = b - a;
-      const double len = geometry::norm(e);
-      const bool facing =
-          len > 0 && side * e.y / len > 0.5 && -e.x / len > 0.05;  // n = (e.y, -e.x)
-      if (facing && k < m) {
-        if (run.empty()) run.push_back(a);
-        run.push_back(b);
-      } else if (!run.empty()) {
-        field.add_feature(run, rack_flank);
-        run.clear();
-      }
+}
+
+// Body-fitted rack: fine along the rack flanks that the pinion's driving
+// flanks meet: outline edges facing them (outward normal against the
+// load's x).
+geometry::SpacingField rack_spacing(const GearLayout& L, const geometry::Polygon& rack_poly,
+                                    const GearSpacings& sp) {
+  geometry::SpacingField field(sp.dx, sp.grading);
+  const double side = clockwise(L) ? 1.0 : -1.0;
+  std::vector<Point> run;
+  const std::size_t m = rack_poly.size();
+  for (std::size_t k = 0; k <= m; ++k) {
+    const Point a = rack_poly[k % m], b = rack_poly[(k + 1) % m];
+    const Point e = b - a;
+    const double len = geometry::norm(e);
+    const bool facing = len > 0 && side * e.y / len > 0.5 && -e.x / len > 0.05;  // n = (e.y, -e.x)
+    if (facing && k < m) {
+      if (run.empty()) run.push_back(a);
+      run.push_back(b);
+    } else if (!run.empty()) {
+      field.add_feature(run, sp.rack_flank);
+      run.clear();
     }
-    add_body_fitted(sim, geometry::make_region(rack_poly), field, rack_motion);
+  }
+  return field;
+}
+
+// The rack's particles: a kernel support deep above its back guided
+// (motion 2).
+void fill_rack(Simulation& sim, const GearLayout& L, const GearOutlines& o, double back_y,
+               const GearSpacings& sp, const Material& mat) {
+  auto motion = [&](double, double y) { return y < back_y + sp.support ? 2 : 0; };
+  add_body(sim, "rack", mat);
+  if (sp.fitted) {
+    add_body_fitted(sim, geometry::make_region(o.rack), rack_spacing(L, o.rack, sp), motion);
   } else {
-    for (const Point& q : geometry::fill_lattice(rack_poly, dx, origin)) {
-      add_particle(sim, q.x, q.y, rack_motion(q.x, q.y));
+    for (const Point& q : geometry::fill_lattice(o.rack, sp.dx, {0.0, 0.0})) {
+      add_particle(sim, q.x, q.y, motion(q.x, q.y));
     }
   }
   end_body(sim);
+}
+
+// --- Initial state and loads.
+
+// Initial velocities: pinion in rigid rotation, rack translating.
+void set_initial_velocities(Simulation& sim, const GearLayout& L) {
   Particles& p = sim.particles;
   const Body& pin_body = sim.bodies[0];
   const Body& rack_body = sim.bodies[1];
-
-  // Initial velocities: pinion in rigid rotation, rack translating.
   for (std::size_t i = pin_body.begin; i < pin_body.end; ++i) {
     p.vx[i] = -L.omega * (p.y[i] - L.cy);
     p.vy[i] = L.omega * (p.x[i] - L.cx);
   }
-  // A torque-driven hub also turns what is not modelled: the rest of the
-  // pinion's steel (its full outline less the modelled particles, about the
-  // axis) and what the job attaches (shaft, motor).
-  const double pinion_inertia = mat_p.rho0 * geometry::polar_moment(pinion.outline());
+  for (std::size_t i = rack_body.begin; i < rack_body.end; ++i) p.vx[i] = L.rack_velocity;
+}
+
+// A torque-driven hub also turns what is not modelled: the rest of the
+// pinion's steel (its full outline less the modelled particles, about the
+// axis) and what the job attaches (shaft, motor). Returns the whole
+// pinion's inertia per unit face width.
+double set_hub_inertia(Simulation& sim, const GearLayout& L, const geometry::PinionGeometry& pinion,
+                       const Material& mat, double attached_kg_m2) {
+  const Particles& p = sim.particles;
+  const Body& pin_body = sim.bodies[0];
+  const double pinion_inertia = mat.rho0 * geometry::polar_moment(pinion.outline());
   double modelled_inertia = 0.0;
   for (std::size_t i = pin_body.begin; i < pin_body.end; ++i) {
     modelled_inertia +=
         p.mass[i] * ((p.x[i] - L.cx) * (p.x[i] - L.cx) + (p.y[i] - L.cy) * (p.y[i] - L.cy));
   }
-  const double attached_inertia = std::max(0.0, pinion_inertia - modelled_inertia) +
-                                  pj.at("attached_inertia_kg_m2").get<double>() / L.face_width_m;
+  const double attached_inertia =
+      std::max(0.0, pinion_inertia - modelled_inertia) + attached_kg_m2 / L.face_width_m;
   sim.motions[1].attached_inertia = L.torque_Nm ? attached_inertia : 0.0;
+  return pinion_inertia;
+}
+
+// Resisting force on the rack back, against its motion, per unit thickness.
+void load_rack_back(Simulation& sim, const GearLayout& L) {
+  Particles& p = sim.particles;
+  const Body& rack_body = sim.bodies[1];
   std::size_t n_back = 0;
   for (std::size_t i = rack_body.begin; i < rack_body.end; ++i) {
-    p.vx[i] = L.rack_velocity;
     if (p.motion[i] == 2) ++n_back;
   }
-  // Resisting force on the rack back, against its motion, per unit thickness.
   const double load_dir = L.rack_velocity <= 0 ? 1.0 : -1.0;
   for (std::size_t i = rack_body.begin; i < rack_body.end; ++i) {
     if (p.motion[i] == 2) {
       p.load_ax[i] = load_dir * L.load_N / L.face_width_m / static_cast<double>(n_back) / p.mass[i];
     }
   }
-  sim.domain = grown_bounds(p, 4.0 * L.tip_radius);
+}
 
-  // Mesh stiffness (ISO 6336-1) and, for static checks, dynamic relaxation of
-  // the slowest mode: the rack as a mass on the mesh spring along x.
+// Mesh stiffness (ISO 6336-1) and, for static checks, dynamic relaxation of
+// the slowest mode: the rack as a mass on the mesh spring along x. Returns
+// that mode's angular frequency.
+double set_mesh_dynamics(Scene& scene, GearLayout& L, const geometry::PinionGeometry& pinion,
+                         const Material& mat_p, const Material& mat_r) {
+  const Particles& p = scene.sim.particles;
+  const Body& rack_body = scene.sim.bodies[1];
   L.iso_mesh_stiffness = gear::iso_single_pair_stiffness(pinion, mat_p.E, mat_r.E);
   double rack_mass = 0.0;
   for (std::size_t i = rack_body.begin; i < rack_body.end; ++i) rack_mass += p.mass[i];
-  const double k_x = L.iso_mesh_stiffness * std::cos(alpha) * std::cos(alpha);
+  const double k_x = L.iso_mesh_stiffness * std::cos(L.pressure_angle) * std::cos(L.pressure_angle);
   const double omega_mesh = std::sqrt(k_x / rack_mass);
   // A mass-spring impact: the rack meets the mesh spring at the difference
   // of pitch-line speeds (the pinion's pitch point moves at omega r along x).
-  const double speed_mismatch = std::abs(L.omega * r - L.rack_velocity);
+  const double speed_mismatch = std::abs(L.omega * L.pitch_radius - L.rack_velocity);
   L.impact_force_bound_N = L.load_N + speed_mismatch * std::sqrt(k_x * rack_mass) * L.face_width_m;
-  L.quasi_static = s.at("quasi_static").get<bool>();
-  if (L.quasi_static) {
-    sim.damping_1_s = omega_mesh;  // damping ratio 1/2 of that mode, heavier for slower ones
-    sim.load_ramp_s = 10.0 * 2.0 * kPi / omega_mesh;
-  }
+  if (L.quasi_static) relax_to_static(scene, omega_mesh);
+  return omega_mesh;
+}
 
-  // --- Bookkeeping per pinion tooth: which particles belong to it, and its
-  // fillets and critical section, where the stress is recovered.
-  // Particles of no modelled tooth (hub, rack) are marked with a number no
-  // tooth has (teeth are numbered -z..z around the mesh).
-  constexpr int kNoTooth = std::numeric_limits<int>::min();
+// --- Bookkeeping per pinion tooth: which particles belong to it, and its
+// fillets and critical section, where the stress is recovered.
+
+// The modelled tooth of every particle (kNoTooth: hub ring, rack);
+// `turned` is the pinion's placement angle (tooth 0's axis at -pi/2 +
+// turned).
+std::vector<int> assign_teeth(const Simulation& sim, const GearLayout& L, double turned) {
+  const Particles& p = sim.particles;
+  const Body& pin_body = sim.bodies[0];
   std::vector<int> tooth_of(p.n, kNoTooth);
-  const double turned = place.pinion.angle;  // tooth 0's axis is at -pi/2 + turned
   for (std::size_t i = pin_body.begin; i < pin_body.end; ++i) {
     if (p.motion[i] != 0) continue;
     const double ang = std::atan2(p.y[i] - L.cy, p.x[i] - L.cx) - (-0.5 * kPi + turned);
-    const int k = static_cast<int>(std::lround(ang / pitch_angle));
-    for (int m : pinion_teeth) {
+    const int k = static_cast<int>(std::lround(ang / pitch_angle(L)));
+    for (int m : L.pinion_teeth) {
       if (((k - m) % L.teeth + L.teeth) % L.teeth == 0) tooth_of[i] = m;
     }
   }
-  for (std::size_t i = pin_body.begin; i < pin_body.end; ++i) {
-    if (tooth_of[i] == 0) L.tooth0_particles.push_back(i);
-  }
-  {
-    // Fillet curves sampled at a fifth of the finest spacing there.
-    std::vector<gear::ToothFillets> fillets;
-    for (int k : pinion_teeth) {
-      fillets.push_back(gear::tooth_fillets(pinion, k, place.pinion, load_on_tooth(k), 0.2 * fine));
-    }
-    L.roots = std::make_shared<const RootMonitor>(sim, 0, pinion_teeth, std::move(fillets), 1);
-  }
+  return tooth_of;
+}
 
-  L.contact_modulus =
-      1.0 / ((1.0 - mat_p.nu * mat_p.nu) / mat_p.E + (1.0 - mat_r.nu * mat_r.nu) / mat_r.E);
-  add_gear_histories(scene, L, tooth_of, L.contact_modulus);
-  // Probe particles: the tooth in mesh at its pitch circle on the driving
-  // flank, the rack tooth it drives, and the middle of the rack's back.
+// The fillets and critical section of every modelled tooth, where the
+// stress is recovered; fillet curves sampled at a fifth of the finest
+// spacing there.
+std::shared_ptr<const RootMonitor> monitor_roots(const Simulation& sim, const GearLayout& L,
+                                                 const geometry::PinionGeometry& pinion,
+                                                 const geometry::MeshPlacement& place,
+                                                 double fine) {
+  std::vector<gear::ToothFillets> fillets;
+  for (int k : L.pinion_teeth) {
+    fillets.push_back(
+        gear::tooth_fillets(pinion, k, place.pinion, load_on_tooth(L, k), 0.2 * fine));
+  }
+  return std::make_shared<const RootMonitor>(sim, 0, L.pinion_teeth, std::move(fillets), 1);
+}
+
+// The probe particles (rack_pinion.hpp, GearProbes) nearest the tooth in
+// mesh's pitch point on its driving flank and the middle of the rack's
+// back.
+GearProbes choose_probes(const Simulation& sim, const GearLayout& L,
+                         const geometry::PinionGeometry& pinion, double turned, double back_y,
+                         double dx) {
+  const Particles& p = sim.particles;
+  const Body& pin_body = sim.bodies[0];
+  const Body& rack_body = sim.bodies[1];
+  const double r = L.pitch_radius;
   const double drive_side = L.omega <= 0 ? -1.0 : 1.0;
   const double flank_angle = -0.5 * kPi + turned + drive_side * pinion.pitch_thickness() / (2 * r);
   const Point pitch_pt{L.cx + r * std::cos(flank_angle), L.cy + r * std::sin(flank_angle)};
-  const std::size_t probe_pinion = nearest(p, pin_body.begin, pin_body.end, pitch_pt);
-  const std::size_t probe_rack = nearest(p, rack_body.begin, rack_body.end, pitch_pt);
-  const std::size_t probe_back =
-      nearest(p, rack_body.begin, rack_body.end, {L.cx, back_y + 0.5 * dx});
-  const std::pair<const char*, std::size_t> probes[] = {
-      {"pinion_tooth", probe_pinion}, {"rack_tooth", probe_rack}, {"rack_back", probe_back}};
-  for (const auto& [name, i] : probes) {
-    scene.columns.push_back({std::string("probe_") + name + "_vx_m_s",
-                             [i = i](const Simulation& s2) { return s2.particles.vx[i]; }});
-    scene.columns.push_back({std::string("probe_") + name + "_vy_m_s",
-                             [i = i](const Simulation& s2) { return s2.particles.vy[i]; }});
-  }
+  GearProbes probes;
+  probes.pinion_tooth = nearest(p, pin_body.begin, pin_body.end, pitch_pt);
+  probes.rack_tooth = nearest(p, rack_body.begin, rack_body.end, pitch_pt);
+  probes.rack_back = nearest(p, rack_body.begin, rack_body.end, {L.cx, back_y + 0.5 * dx});
+  return probes;
+}
 
-  scene.outlines.push_back(to_outline("pinion", 0, pinion_poly));
-  scene.outlines.push_back(to_outline("rack", 1, rack_poly));
-  scene.default_end_s = L.quasi_static ? 2.0 * sim.load_ramp_s : 0.04;
+// --- What was modelled, for the summary.
+
+// How the modelled teeth were chosen, in words.
+std::string explain_selection(const nlohmann::json& pj, const GearLayout& L,
+                              const ModelledTeeth& teeth) {
+  std::ostringstream why;
+  why << "a pinion tooth engages while its axis is within " << -teeth.lo << " pitch before to "
+      << teeth.hi << " pitch after the mesh position (path of contact, contact ratio "
+      << L.path.contact_ratio << ", plus half a pitch each side); in " << L.end_s
+      << " s the pinion turns " << std::abs(teeth.turn) << " pitch and the rack travels "
+      << std::abs(teeth.rack_turn) << " pitch";
+  return pj.at("modelled_teeth") == "auto" ? why.str() : "set by the job (modelled_teeth)";
+}
+
+// The pinion as modelled: its circles and teeth, where it is deformable,
+// and how it is driven.
+nlohmann::json describe_pinion(const Simulation& sim, const nlohmann::json& pj, const GearLayout& L,
+                               const geometry::PinionGeometry& pinion, double r_drive,
+                               double pinion_inertia) {
+  std::size_t hub = 0;
+  for (std::size_t i = 0; i < sim.particles.n; ++i) hub += sim.particles.motion[i] == 1;
+  return {{"teeth", L.teeth},
+          {"modelled_teeth", L.pinion_teeth},
+          {"pitch_radius_m", L.pitch_radius},
+          {"base_radius_m", L.base_radius},
+          {"tip_radius_m", L.tip_radius},
+          {"root_radius_m", L.root_radius},
+          {"form_radius_m", L.form_radius},
+          {"undercut", pinion.undercut()},
+          {"pitch_thickness_m", pinion.pitch_thickness()},
+          {"deformable_from_radius_m", r_drive},
+          {"driven_hub_particles", hub},
+          {"drive", L.torque_Nm
+                        ? nlohmann::json{{"torque_N_m", *L.torque_Nm},
+                                         {"initial_omega_rad_s", L.omega},
+                                         {"pinion_inertia_kg_m2", pinion_inertia * L.face_width_m},
+                                         {"attached_inertia_kg_m2",
+                                          pj.at("attached_inertia_kg_m2").get<double>()}}
+                        : nlohmann::json{{"omega_rad_s", L.omega}}}};
+}
+
+// The rack segment as modelled.
+nlohmann::json describe_rack(const Simulation& sim, const geometry::RackGeometry& rack) {
+  std::size_t guided = 0;
+  for (std::size_t i = 0; i < sim.particles.n; ++i) guided += sim.particles.motion[i] == 2;
+  return {{"modelled_teeth", rack.spec().teeth},
+          {"pitch_m", rack.pitch()},
+          {"back_thickness_m", rack.spec().back_thickness_m},
+          {"guided_back_particles", guided}};
+}
+
+// The mesh as modelled: how it starts and how stiff it is.
+nlohmann::json describe_mesh(const Simulation& sim, const nlohmann::json& s, const GearLayout& L,
+                             double phase, double omega_mesh) {
+  return {{"contact_ratio", L.path.contact_ratio},
+          {"modelled_teeth_reason", L.selection},
+          {"mesh_phase", s.at("mesh_phase")},
+          {"initial_rotation_to_close_play_rad", phase},
+          {"iso_mesh_stiffness_N_per_mm_um", 1e-9 * L.iso_mesh_stiffness},
+          {"rack_mesh_mode_rad_s", omega_mesh},
+          {"impact_force_bound_N", L.impact_force_bound_N},
+          {"quasi_static", L.quasi_static ? nlohmann::json{{"damping_1_s", sim.damping_1_s},
+                                                           {"load_ramp_s", sim.load_ramp_s}}
+                                          : nlohmann::json(false)}};
+}
+
+}  // namespace
+
+double pinion_rim_depth_m(const nlohmann::json& pinion) {
+  if (pinion.contains("rim_depth_mm")) return 1e-3 * pinion.at("rim_depth_mm").get<double>();
+  return 1e-3 * pinion.at("module_mm").get<double>();
+}
+
+Scene build_rack_pinion(const SceneInput& in) {
+  const nlohmann::json& s = in.scene;
+  const nlohmann::json& pj = s.at("pinion");
+  GearLayout L = read_gear_layout(in);
+  const geometry::PinionGeometry pinion = generate_pinion(pj, L);
+  set_pinion_references(L, pinion);
+
+  Scene scene = start_scene("rack_pinion", in);
+  Simulation& sim = scene.sim;
+  const GearSpacings sp = choose_spacings(sim, in.discretization, L);
+  L.quasi_static = s.at("quasi_static").get<bool>();
+  const ModelledTeeth teeth = choose_modelled_teeth(s, L, pinion);
+  const geometry::RackGeometry rack = build_rack(s.at("rack"), L, pinion, teeth);
+
+  const double phase = closing_rotation(s, L, pinion, rack);
+  const double travel = travel_to_contact_point(s, L, pinion, phase);
+  const geometry::MeshPlacement place = place_gears(L, pinion, rack, teeth, phase, travel);
+  const GearOutlines outlines = gear_outlines(pj, L, pinion, rack, teeth, place, sp.support);
+
+  const Material mat_p =
+      read_material(s.contains("pinion_material") ? s.at("pinion_material") : s.at("material"));
+  const Material mat_r =
+      read_material(s.contains("rack_material") ? s.at("rack_material") : s.at("material"));
+  const double back_y = place.rack.apply({0.0, rack.back_y()}).y;
+  add_gear_motions(sim, L);
+  fill_pinion(sim, L, pinion, place, outlines, sp, teeth.whole_pinion, mat_p);
+  fill_rack(sim, L, outlines, back_y, sp, mat_r);
+  set_initial_velocities(sim, L);
+  const double pinion_inertia =
+      set_hub_inertia(sim, L, pinion, mat_p, pj.at("attached_inertia_kg_m2").get<double>());
+  load_rack_back(sim, L);
+  sim.domain = grown_bounds(sim.particles, 4.0 * L.tip_radius);
+  const double omega_mesh = set_mesh_dynamics(scene, L, pinion, mat_p, mat_r);
+
+  const double turned = place.pinion.angle;  // tooth 0's axis is at -pi/2 + turned
+  const std::vector<int> tooth_of = assign_teeth(sim, L, turned);
+  // The static check finds where tooth 0 is loaded from its particles.
+  for (std::size_t i = sim.bodies[0].begin; i < sim.bodies[0].end; ++i) {
+    if (tooth_of[i] == 0) L.tooth0_particles.push_back(i);
+  }
+  L.roots = monitor_roots(sim, L, pinion, place, sp.fine);
+  L.contact_modulus =
+      1.0 / ((1.0 - mat_p.nu * mat_p.nu) / mat_p.E + (1.0 - mat_r.nu * mat_r.nu) / mat_r.E);
+  add_gear_histories(scene, L, tooth_of, choose_probes(sim, L, pinion, turned, back_y, sp.dx));
+
+  scene.outlines.push_back(polygon_outline("pinion", 0, outlines.pinion));
+  scene.outlines.push_back(polygon_outline("rack", 1, outlines.rack));
+  if (!L.quasi_static) scene.default_end_s = 0.04;  // static checks: relax_to_static's
   scene.default_dt_s = 4e-8;
 
-  std::ostringstream why;
-  why << "a pinion tooth engages while its axis is within " << -lo << " pitch before to " << hi
-      << " pitch after the mesh position (path of contact, contact ratio " << L.path.contact_ratio
-      << ", plus half a pitch each side); in " << L.end_s << " s the pinion turns "
-      << std::abs(turn) << " pitch and the rack travels " << std::abs(rack_turn) << " pitch";
-  L.selection = pj.at("modelled_teeth") == "auto" ? why.str() : "set by the job (modelled_teeth)";
-  std::size_t hub = 0, guided = 0;
-  for (std::size_t i = 0; i < p.n; ++i) {
-    hub += p.motion[i] == 1;
-    guided += p.motion[i] == 2;
-  }
-  scene.description = {
-      {"pinion",
-       {{"teeth", L.teeth},
-        {"modelled_teeth", pinion_teeth},
-        {"pitch_radius_m", r},
-        {"base_radius_m", rb},
-        {"tip_radius_m", L.tip_radius},
-        {"root_radius_m", L.root_radius},
-        {"form_radius_m", L.form_radius},
-        {"undercut", pinion.undercut()},
-        {"pitch_thickness_m", pinion.pitch_thickness()},
-        {"deformable_from_radius_m", r_drive},
-        {"driven_hub_particles", hub},
-        {"drive", L.torque_Nm
-                      ? nlohmann::json{{"torque_N_m", *L.torque_Nm},
-                                       {"initial_omega_rad_s", L.omega},
-                                       {"pinion_inertia_kg_m2", pinion_inertia * L.face_width_m},
-                                       {"attached_inertia_kg_m2",
-                                        pj.at("attached_inertia_kg_m2").get<double>()}}
-                      : nlohmann::json{{"omega_rad_s", L.omega}}}}},
-      {"rack",
-       {{"modelled_teeth", rs.teeth},
-        {"pitch_m", rack.pitch()},
-        {"back_thickness_m", rs.back_thickness_m},
-        {"guided_back_particles", guided}}},
-      {"contact_ratio", L.path.contact_ratio},
-      {"modelled_teeth_reason", L.selection},
-      {"mesh_phase", s.at("mesh_phase")},
-      {"initial_rotation_to_close_play_rad", phase},
-      {"iso_mesh_stiffness_N_per_mm_um", 1e-9 * L.iso_mesh_stiffness},
-      {"rack_mesh_mode_rad_s", omega_mesh},
-      {"impact_force_bound_N", L.impact_force_bound_N},
-      {"quasi_static", L.quasi_static ? nlohmann::json{{"damping_1_s", sim.damping_1_s},
-                                                       {"load_ramp_s", sim.load_ramp_s}}
-                                      : nlohmann::json(false)}};
+  L.selection = explain_selection(pj, L, teeth);
+  scene.description = describe_mesh(sim, s, L, phase, omega_mesh);
+  scene.description["pinion"] =
+      describe_pinion(sim, pj, L, pinion, outlines.r_drive, pinion_inertia);
+  scene.description["rack"] = describe_rack(sim, rack);
 
   scene.analyse = [L](const History& h, const Simulation& s2) {
     return analyse_rack_pinion(L, h, s2);

@@ -1,6 +1,8 @@
 #pragma once
 // The rack-and-pinion scene (method.md, "The paper's gear case"): what the
-// builder decided, shared with the analysis of the finished run.
+// builder decided, shared with its history columns and the analysis of the
+// finished run.
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -14,7 +16,8 @@
 
 namespace gearsph {
 struct Simulation;
-}
+struct Scene;
+}  // namespace gearsph
 
 namespace gearsph::scenes {
 
@@ -57,6 +60,25 @@ struct GearLayout {
   std::vector<gear::IsoToothForm> iso_by_radius;  // form radius to tip, ascending
   std::string selection;                          // how the modelled teeth were chosen, in words
 };
+
+// Particles of no modelled tooth (hub ring, rack) are marked with a number
+// no tooth has (teeth are numbered -z..z around the mesh).
+inline constexpr int kNoTooth = std::numeric_limits<int>::min();
+
+// Particles whose velocities the history follows: the tooth in mesh at its
+// pitch circle on the driving flank, the rack tooth it drives, and the
+// middle of the rack's back.
+struct GearProbes {
+  std::size_t pinion_tooth = 0, rack_tooth = 0, rack_back = 0;
+};
+
+// History columns (rack_pinion_histories.cpp): the rack's motion and
+// transmission error, the hub's rate and torque, the contact force, per
+// modelled tooth its root stress (fillets and critical section) and
+// contact force, and the probes' velocities. tooth_of: each particle's
+// modelled tooth, or kNoTooth.
+void add_gear_histories(Scene& scene, const GearLayout& L, const std::vector<int>& tooth_of,
+                        const GearProbes& probes);
 
 // Velocity-stability time (docs/gears.md): the earliest t* after which v(t)
 // stays within +/- tolerance of its mean over [t*, end]. -1 if never (the

@@ -42,10 +42,6 @@ double max_of(const std::vector<double>& v) {
   return m;
 }
 
-}  // namespace
-
-namespace {
-
 // The fillet curves of one tooth as a gear engineer plots them: stress
 // against arc length from the middle of the tooth space (compression
 // fillet: sigma_3, tension fillet: sigma_1).
@@ -141,37 +137,35 @@ gear::IsoToothForm iso_at(const GearLayout& L, double radius) {
   return t.back();
 }
 
-}  // namespace
+// The last sample at which a series takes the value `v` (0 if none).
+std::size_t last_index_of(const std::vector<double>& series, double v) {
+  std::size_t k_at = 0;
+  for (std::size_t k = 0; k < series.size(); ++k) {
+    if (series[k] == v) k_at = k;
+  }
+  return k_at;
+}
 
-nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
-                                   const Simulation& final_state) {
-  nlohmann::json a;
-  const std::vector<double> t = h.column("time_s");
-  const double b = L.face_width_m, m = L.module_m;
-
-  // Velocity stability of the transmitted motion (the rack) and of each probe.
-  const std::vector<double> vr = h.column("rack_vx_m_s");
-  const double t_stable = velocity_stability_time(t, vr, 0.05);
-  a["velocity_stability"] = {
+// Velocity stability of the transmitted motion (the rack, t_rack) and of
+// each probe.
+nlohmann::json velocity_stability(const History& h, const std::vector<double>& t, double t_rack) {
+  nlohmann::json out = {
       {"definition",
        "earliest time after which the rack's mean x velocity stays within +/-5 % of its mean "
        "over the rest of the run; -1 if it never settles"},
-      {"rack_s", t_stable}};
+      {"rack_s", t_rack}};
   for (const char* probe : {"pinion_tooth", "rack_tooth", "rack_back"}) {
     const std::string col = std::string("probe_") + probe + "_vx_m_s";
-    a["velocity_stability"][std::string(probe) + "_s"] =
-        velocity_stability_time(t, h.column(col), 0.05);
+    out[std::string(probe) + "_s"] = velocity_stability_time(t, h.column(col), 0.05);
   }
-  const std::vector<double> fc = h.column("contact_force_N");
-  const double f_max = max_of(fc);
-  std::size_t k_max = 0;
-  for (std::size_t k = 0; k < fc.size(); ++k) {
-    if (fc[k] == f_max) k_max = k;
-  }
+  return out;
+}
 
-  // Root stress per modelled tooth, and the references. Ft for the formulas:
-  // the resisting load when one is applied, else the peak contact force's
-  // tangential part (contact force along the line of action: Ft = F cos alpha).
+// Root stress per modelled tooth, and the references. Ft for the formulas:
+// the resisting load when one is applied, else the peak contact force's
+// tangential part (contact force along the line of action: Ft = F cos alpha).
+void add_root_stresses(nlohmann::json& a, const GearLayout& L, const History& h, double f_max) {
+  const double b = L.face_width_m, m = L.module_m;
   const double ft = L.load_N > 0 ? L.load_N : f_max * std::cos(L.pressure_angle);
   nlohmann::json teeth = nlohmann::json::array();
   double root_max = 0.0, bending_max = 0.0;
@@ -211,9 +205,12 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
         {"sigma_F0_Pa", ft / (b * m) * L.iso_pitch.Y_F * L.iso_pitch.Y_S}}},
       {"s_Fn_m", L.iso_tip.s_Fn},
       {"rho_F_m", L.iso_tip.rho_F}};
+}
 
-  // Load sharing and the contact ratio actually seen: a tooth carries load
-  // when its contact force exceeds 5 % of the total at that instant.
+// Load sharing and the contact ratio actually seen: a tooth carries load
+// when its contact force exceeds 5 % of the total at that instant.
+nlohmann::json measured_contact_ratio(const GearLayout& L, const History& h,
+                                      const std::vector<double>& fc, double f_max) {
   double pairs_sum = 0.0;
   std::size_t pairs_n = 0;
   for (std::size_t row = 0; row < h.rows(); ++row) {
@@ -228,13 +225,16 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
     pairs_sum += carrying;
     ++pairs_n;
   }
-  a["contact_ratio"] = {
+  return {
       {"theory", L.path.contact_ratio},
       {"measured_mean_teeth_in_contact", pairs_n ? pairs_sum / static_cast<double>(pairs_n) : 0.0}};
+}
 
-  // Transmission error and, under a steady load, the mesh stiffness it implies:
-  // c' = F_bt / (b * delta_n) with delta the mean lag of the rack over the second
-  // half of the run (N/(mm um), ISO 6336-1's unit).
+// Transmission error and, under a steady load, the mesh stiffness it implies:
+// c' = F_bt / (b * delta_n) with delta the mean lag of the rack over the second
+// half of the run (N/(mm um), ISO 6336-1's unit). Returns that mean lag [m].
+double add_transmission_error(nlohmann::json& a, const GearLayout& L, const History& h,
+                              const std::vector<double>& t) {
   const std::vector<double> te = h.column("transmission_error_m");
   double te_mean = 0.0, te_lo = 1e300, te_hi = -1e300;
   std::size_t count = 0;
@@ -251,123 +251,167 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
   if (L.load_N > 0 && std::abs(te_mean) > 0) {
     // Along the line of action: F_bt = F_t / cos(alpha), delta_n = delta_x cos(alpha).
     const double c = std::cos(L.pressure_angle);
-    a["mesh_stiffness_N_per_mm_um"] = L.load_N / (c * c) / (1e3 * b) / (1e6 * std::abs(te_mean));
+    a["mesh_stiffness_N_per_mm_um"] =
+        L.load_N / (c * c) / (1e3 * L.face_width_m) / (1e6 * std::abs(te_mean));
   }
   a["iso_mesh_stiffness_N_per_mm_um"] = 1e-9 * L.iso_mesh_stiffness;
+  return te_mean;
+}
 
-  // Static check (validation.md 7): tooth 0 loaded alone at its contact
-  // point (scene.contact_point), relaxed. The fillet stresses recovered on
-  // the true outline against ISO 6336-3 with the load where it was placed
-  // (sigma_F0 = Ft / (b m) Y_F Y_S, Ft tooth 0's share), the nominal bending
-  // of the critical section against ISO's Y_F alone, and Lewis.
-  const auto t0 = std::find(L.pinion_teeth.begin(), L.pinion_teeth.end(), 0);
-  if (L.quasi_static && L.load_N > 0 && h.rows() > 0 && t0 != L.pinion_teeth.end()) {
-    const std::size_t i0 = static_cast<std::size_t>(t0 - L.pinion_teeth.begin());
-    const ToothRootState& root = L.roots->at(final_state)[i0];
-    const std::size_t last = h.rows() - 1;
-    const double tooth_force = h.at(last, static_cast<std::size_t>(h.index("tooth_force_t0_N")));
-    const double lewis = L.lewis_Y > 0 ? L.load_N / (b * m * L.lewis_Y) : 0.0;
-    const gear::IsoToothForm form = iso_at(L, L.load_radius);
-    // ISO's Ft is the load on the one tooth: tooth 0's share of the rack
-    // force (all of it when it meets the only rack tooth).
-    const double ft0 = tooth_force * std::cos(L.pressure_angle);
-    const double iso = ft0 / (b * m) * form.Y_F * form.Y_S;
-    const double iso_nominal = ft0 / (b * m) * form.Y_F;
-    const double bending = root.section_nominal_bending_Pa;
-    const double sigma = root.root_stress_Pa;
-    constexpr double kDeg = 180.0 / 3.141592653589793;
-    const double width = L.roots->section_width(i0);
-    a["static_check"] = {
-        {"contact_point", L.contact_point},
-        {"load_radius_m", L.load_radius},
-        {"measured_load_radius_m", tooth0_load_radius(L, final_state)},
-        {"tooth0_force_N", tooth_force},
-        {"load_carried_by_tooth0", ft0 / L.load_N},
-        {"fillet_tension_peak_Pa", root.fillet.tension.stress_Pa},
-        {"fillet_tension_peak_radius_m", root.fillet.tension.radius_m},
-        {"fillet_tension_peak_angle_deg", kDeg * root.fillet.tension.angle_rad},
-        {"fillet_compression_peak_Pa", root.fillet.compression.stress_Pa},
-        {"fillet_compression_peak_radius_m", root.fillet.compression.radius_m},
-        {"fillet_compression_peak_angle_deg", kDeg * root.fillet.compression.angle_rad},
-        {"fillet_stress_at_iso30_Pa", root.fillet.tension.at_iso30_Pa},
-        {"iso_sigma_F0_Pa", iso},
-        {"iso_Y_F_at_load", form.Y_F},
-        {"iso_Y_S_at_load", form.Y_S},
-        {"fillet_tension_peak_error_vs_iso", (root.fillet.tension.stress_Pa - iso) / iso},
-        {"fillet_iso30_error_vs_iso", (root.fillet.tension.at_iso30_Pa - iso) / iso},
-        {"root_stress_Pa", sigma},
-        {"root_section",
-         {{"chord_m", width},
-          {"normal_force_N_per_m", root.section_normal_force_N_per_m},
-          {"bending_moment_N", root.section_bending_moment_N},
+// Static check (validation.md 7): tooth 0 (modelled tooth i0) loaded alone
+// at its contact point (scene.contact_point), relaxed. The fillet stresses
+// recovered on the true outline against ISO 6336-3 with the load where it
+// was placed (sigma_F0 = Ft / (b m) Y_F Y_S, Ft tooth 0's share), the
+// nominal bending of the critical section against ISO's Y_F alone, and
+// Lewis.
+nlohmann::json static_root_check(const GearLayout& L, const History& h,
+                                 const Simulation& final_state, std::size_t i0) {
+  const double b = L.face_width_m, m = L.module_m;
+  const ToothRootState& root = L.roots->at(final_state)[i0];
+  const std::size_t last = h.rows() - 1;
+  const double tooth_force = h.at(last, static_cast<std::size_t>(h.index("tooth_force_t0_N")));
+  const double lewis = L.lewis_Y > 0 ? L.load_N / (b * m * L.lewis_Y) : 0.0;
+  const gear::IsoToothForm form = iso_at(L, L.load_radius);
+  // ISO's Ft is the load on the one tooth: tooth 0's share of the rack
+  // force (all of it when it meets the only rack tooth).
+  const double ft0 = tooth_force * std::cos(L.pressure_angle);
+  const double iso = ft0 / (b * m) * form.Y_F * form.Y_S;
+  const double iso_nominal = ft0 / (b * m) * form.Y_F;
+  const double bending = root.section_nominal_bending_Pa;
+  const double sigma = root.root_stress_Pa;
+  constexpr double kDeg = 180.0 / 3.141592653589793;
+  const double width = L.roots->section_width(i0);
+  return {{"contact_point", L.contact_point},
+          {"load_radius_m", L.load_radius},
+          {"measured_load_radius_m", tooth0_load_radius(L, final_state)},
+          {"tooth0_force_N", tooth_force},
+          {"load_carried_by_tooth0", ft0 / L.load_N},
+          {"fillet_tension_peak_Pa", root.fillet.tension.stress_Pa},
+          {"fillet_tension_peak_radius_m", root.fillet.tension.radius_m},
+          {"fillet_tension_peak_angle_deg", kDeg * root.fillet.tension.angle_rad},
+          {"fillet_compression_peak_Pa", root.fillet.compression.stress_Pa},
+          {"fillet_compression_peak_radius_m", root.fillet.compression.radius_m},
+          {"fillet_compression_peak_angle_deg", kDeg * root.fillet.compression.angle_rad},
+          {"fillet_stress_at_iso30_Pa", root.fillet.tension.at_iso30_Pa},
+          {"iso_sigma_F0_Pa", iso},
+          {"iso_Y_F_at_load", form.Y_F},
+          {"iso_Y_S_at_load", form.Y_S},
+          {"fillet_tension_peak_error_vs_iso", (root.fillet.tension.stress_Pa - iso) / iso},
+          {"fillet_iso30_error_vs_iso", (root.fillet.tension.at_iso30_Pa - iso) / iso},
+          {"root_stress_Pa", sigma},
+          {"root_section",
+           {{"chord_m", width},
+            {"normal_force_N_per_m", root.section_normal_force_N_per_m},
+            {"bending_moment_N", root.section_bending_moment_N},
+            {"nominal_bending_stress_Pa", bending},
+            {"mean_normal_stress_Pa", root.section_normal_force_N_per_m / width}}},
           {"nominal_bending_stress_Pa", bending},
-          {"mean_normal_stress_Pa", root.section_normal_force_N_per_m / width}}},
-        {"nominal_bending_stress_Pa", bending},
-        {"iso_nominal_Pa", iso_nominal},
-        {"nominal_error_vs_iso", (bending - iso_nominal) / iso_nominal},
-        {"lewis_Pa", lewis},
-        {"nominal_error_vs_lewis", lewis > 0 ? (bending - lewis) / lewis : 0.0},
-        {"fillet_curves", fillet_curves(L.roots->fillets(i0), root)},
-        // Where tooth 0 is (reference frame; a static check's displacements
-        // are microns): the window of the FE check's tooth figures, for its
-        // field to be drawn beside them.
-        {"tooth0_box_m", gear::tooth_window(L.roots->fillets(i0), L.tip_radius)},
-        {"particles", L.fitted ? "body_fitted" : "lattice"},
-        {"spacing_m", L.spacing},
-        {"fine_spacing_m", L.fine_spacing}};
-    if (a.contains("mesh_stiffness_N_per_mm_um")) {
-      a["static_check"]["mesh_stiffness_N_per_mm_um"] = a["mesh_stiffness_N_per_mm_um"];
-      a["static_check"]["iso_mesh_stiffness_N_per_mm_um"] = 1e-9 * L.iso_mesh_stiffness;
-      a["static_check"]["mesh_stiffness_error_vs_iso"] =
-          a["mesh_stiffness_N_per_mm_um"].get<double>() / (1e-9 * L.iso_mesh_stiffness) - 1.0;
-      // Along the line of action: delta_n = delta_x cos(alpha), per F_bt / b.
-      const double c = std::cos(L.pressure_angle);
-      a["static_check"]["mesh_compliance"] =
-          compliance_split(final_state, std::abs(te_mean) * c, L.load_N / c / (1e3 * b));
-    }
-  }
+          {"iso_nominal_Pa", iso_nominal},
+          {"nominal_error_vs_iso", (bending - iso_nominal) / iso_nominal},
+          {"lewis_Pa", lewis},
+          {"nominal_error_vs_lewis", lewis > 0 ? (bending - lewis) / lewis : 0.0},
+          {"fillet_curves", fillet_curves(L.roots->fillets(i0), root)},
+          // Where tooth 0 is (reference frame; a static check's displacements
+          // are microns): the window of the FE check's tooth figures, for its
+          // field to be drawn beside them.
+          {"tooth0_box_m", gear::tooth_window(L.roots->fillets(i0), L.tip_radius)},
+          {"particles", L.fitted ? "body_fitted" : "lattice"},
+          {"spacing_m", L.spacing},
+          {"fine_spacing_m", L.fine_spacing}};
+}
 
-  // The largest Hertz contact pressure of any modelled tooth over the run
-  // (a sub-model on the resolved tooth force, history contact_pressure_t<k>_Pa).
-  double p_max = 0.0, p_time = 0.0;
-  int p_tooth = 0;
+// The static check's mesh stiffness against ISO 6336-1 and where the
+// compliance sits, from the measured stiffness and transmission error.
+void add_static_mesh_stiffness(nlohmann::json& sc, double mesh_stiffness, const GearLayout& L,
+                               const Simulation& final_state, double te_mean) {
+  sc["mesh_stiffness_N_per_mm_um"] = mesh_stiffness;
+  sc["iso_mesh_stiffness_N_per_mm_um"] = 1e-9 * L.iso_mesh_stiffness;
+  sc["mesh_stiffness_error_vs_iso"] = mesh_stiffness / (1e-9 * L.iso_mesh_stiffness) - 1.0;
+  // Along the line of action: delta_n = delta_x cos(alpha), per F_bt / b.
+  const double c = std::cos(L.pressure_angle);
+  sc["mesh_compliance"] =
+      compliance_split(final_state, std::abs(te_mean) * c, L.load_N / c / (1e3 * L.face_width_m));
+}
+
+// The static check's Hertz peak pressure on tooth 0 (history
+// contact_pressure_t0_Pa, last row) against ISO 6336-2.
+void add_static_contact_pressure(nlohmann::json& sc, const GearLayout& L, const History& h) {
+  const double hertz =
+      h.at(h.rows() - 1, static_cast<std::size_t>(h.index("contact_pressure_t0_Pa")));
+  // ISO 6336-2's nominal contact stress for tooth 0's load alone (one
+  // pair: Z_eps = 1), Z_beta = 1 (spur), u -> infinity (rack).
+  const double iso_h =
+      gear::iso_sigma_H0(sc.at("tooth0_force_N").get<double>() * std::cos(L.pressure_angle),
+                         2.0 * L.pitch_radius, L.face_width_m, L.pressure_angle, L.contact_modulus);
+  sc["hertz_peak_pressure_Pa"] = hertz;
+  sc["iso_sigma_H0_Pa"] = iso_h;
+  sc["hertz_peak_pressure_note"] =
+      "Hertz line contact on tooth 0's resolved force and its flank's curvature where the "
+      "force acts (a sub-model, not read from particles); ISO's sigma_H0 is the same at the "
+      "pitch point";
+}
+
+// The largest Hertz contact pressure of any modelled tooth over the run
+// (a sub-model on the resolved tooth force, history contact_pressure_t<k>_Pa).
+struct PeakPressure {
+  double pressure_Pa = 0.0, time_s = 0.0;
+  int tooth = 0;
+};
+PeakPressure peak_contact_pressure(const GearLayout& L, const History& h,
+                                   const std::vector<double>& t) {
+  PeakPressure peak;
   for (int k : L.pinion_teeth) {
     const long col = h.index("contact_pressure_t" + std::to_string(k) + "_Pa");
     if (col < 0) continue;
     for (std::size_t row = 0; row < h.rows(); ++row) {
       const double v = h.at(row, static_cast<std::size_t>(col));
-      if (v > p_max) {
-        p_max = v;
-        p_time = t[row];
-        p_tooth = k;
+      if (v > peak.pressure_Pa) {
+        peak.pressure_Pa = v;
+        peak.time_s = t[row];
+        peak.tooth = k;
       }
     }
   }
-  if (a.contains("static_check") && h.rows() > 0) {
-    nlohmann::json& sc = a["static_check"];
-    const double hertz =
-        h.at(h.rows() - 1, static_cast<std::size_t>(h.index("contact_pressure_t0_Pa")));
-    // ISO 6336-2's nominal contact stress for tooth 0's load alone (one
-    // pair: Z_eps = 1), Z_beta = 1 (spur), u -> infinity (rack).
-    const double iso_h =
-        gear::iso_sigma_H0(sc.at("tooth0_force_N").get<double>() * std::cos(L.pressure_angle),
-                           2.0 * L.pitch_radius, b, L.pressure_angle, L.contact_modulus);
-    sc["hertz_peak_pressure_Pa"] = hertz;
-    sc["iso_sigma_H0_Pa"] = iso_h;
-    sc["hertz_peak_pressure_note"] =
-        "Hertz line contact on tooth 0's resolved force and its flank's curvature where the "
-        "force acts (a sub-model, not read from particles); ISO's sigma_H0 is the same at the "
-        "pitch point";
+  return peak;
+}
+
+}  // namespace
+
+nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
+                                   const Simulation& final_state) {
+  nlohmann::json a;
+  const std::vector<double> t = h.column("time_s");
+  const double t_stable = velocity_stability_time(t, h.column("rack_vx_m_s"), 0.05);
+  a["velocity_stability"] = velocity_stability(h, t, t_stable);
+  const std::vector<double> fc = h.column("contact_force_N");
+  const double f_max = max_of(fc);
+  const std::size_t k_max = last_index_of(fc, f_max);
+  add_root_stresses(a, L, h, f_max);
+  a["contact_ratio"] = measured_contact_ratio(L, h, fc, f_max);
+  const double te_mean = add_transmission_error(a, L, h, t);
+
+  // A static check: tooth 0 modelled, loaded and relaxed.
+  const auto t0 = std::find(L.pinion_teeth.begin(), L.pinion_teeth.end(), 0);
+  if (L.quasi_static && L.load_N > 0 && h.rows() > 0 && t0 != L.pinion_teeth.end()) {
+    const auto i0 = static_cast<std::size_t>(t0 - L.pinion_teeth.begin());
+    nlohmann::json sc = static_root_check(L, h, final_state, i0);
+    if (a.contains("mesh_stiffness_N_per_mm_um")) {
+      add_static_mesh_stiffness(sc, a["mesh_stiffness_N_per_mm_um"].get<double>(), L, final_state,
+                                te_mean);
+    }
+    add_static_contact_pressure(sc, L, h);
+    a["static_check"] = sc;
   }
 
+  const PeakPressure p = peak_contact_pressure(L, h, t);
   a["summary_fields"] = {
-      {"max_contact_pressure_Pa", p_max},
-      {"max_contact_pressure_tooth", p_tooth},
-      {"max_contact_pressure_time_s", p_time},
+      {"max_contact_pressure_Pa", p.pressure_Pa},
+      {"max_contact_pressure_tooth", p.tooth},
+      {"max_contact_pressure_time_s", p.time_s},
       {"velocity_stability_time_s", t_stable},
       {"max_contact_force_N", f_max},
       {"max_contact_force_time_s", t.empty() ? 0.0 : t[k_max]},
-      {"max_root_stress_Pa", root_max},
+      {"max_root_stress_Pa", a["max_root_stress_Pa"].get<double>()},
       {"modelled_teeth",
        {{"pinion", L.pinion_teeth}, {"rack", L.rack_teeth.size()}, {"reason", L.selection}}}};
   return a;

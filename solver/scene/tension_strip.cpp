@@ -44,10 +44,8 @@ Scene build_tension_strip(const SceneInput& in) {
   const double periods = s.at("stretch_periods").get<double>();
   const Material mat = read_material(s.at("material"));
 
-  Scene scene;
-  scene.type = "tension_strip";
+  Scene scene = start_scene("tension_strip", in);
   Simulation& sim = scene.sim;
-  sim.discretization = in.discretization;
   particle_layout(in.discretization, ParticleLayout::Lattice, /*fitted_ok=*/false);
   if (sim.discretization.dx <= 0) sim.discretization.dx = H / 10.0;
   const double dx = sim.discretization.dx;

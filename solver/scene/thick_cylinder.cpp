@@ -19,58 +19,52 @@
 namespace gearsph::scenes {
 
 namespace {
+
 constexpr double kPi = std::numbers::pi;
 constexpr int kBorePoints = 360;
-}  // namespace
 
-Scene build_thick_cylinder(const SceneInput& in) {
-  const nlohmann::json& s = in.scene;
-  const double a = s.at("inner_radius_m").get<double>(), b = s.at("outer_radius_m").get<double>();
-  const double pressure = s.at("pressure_Pa").get<double>();
-  const Material mat = read_material(s.at("material"));
-  if (!(b > a)) throw JobError("/scene/outer_radius_m", "the outer radius must exceed the bore's");
-
-  Scene scene;
-  scene.type = "thick_cylinder";
-  Simulation& sim = scene.sim;
-  sim.discretization = in.discretization;
-  const ParticleLayout layout = particle_layout(in.discretization, ParticleLayout::BodyFitted);
-  const bool fitted = layout == ParticleLayout::BodyFitted;
-  Discretization& d = sim.discretization;
-  if (d.dx <= 0) d.dx = (b - a) / 10.0;
-  const double fine = fitted ? (d.fine_dx > 0 ? d.fine_dx : std::min(d.dx, (b - a) / 25.0)) : d.dx;
-  const double grading = d.grading > 0 ? d.grading : geometry::kDefaultGrading;
-  if (fine > d.dx) {
-    throw JobError("/discretization/fine_spacing_m",
-                   "the fine spacing must not exceed the bulk spacing");
-  }
-  if (b - a < 3.0 * fine) {
+// Body-fitted (the default): a tenth of the wall in bulk, a twenty-fifth at
+// the bore; the wall needs three spacings across it.
+SceneSpacings wall_spacings(Discretization& d, double a, double b) {
+  const bool fitted = particle_layout(d, ParticleLayout::BodyFitted) == ParticleLayout::BodyFitted;
+  const SceneSpacings sp = graded_scene_spacings(d, fitted, (b - a) / 10.0, (b - a) / 25.0);
+  require_fine_within_bulk(sp);
+  if (b - a < 3.0 * sp.fine) {
     throw JobError("/discretization", "the wall needs at least three spacings across it");
   }
+  return sp;
+}
+
+// The ring between the bore (radius a) and the rim (b); body-fitted
+// particles are fine at the bore, where the hoop stress peaks.
+void fill_ring(Simulation& sim, const SceneSpacings& sp, const geometry::Polygon& bore,
+               const geometry::Polygon& rim, double a, double b, const Material& mat) {
   add_body(sim, "ring", mat);
-  const geometry::Polygon bore = geometry::circle({0.0, 0.0}, a, 1e-5 * a);
-  const geometry::Polygon rim = geometry::circle({0.0, 0.0}, b, 1e-5 * b);
-  if (fitted) {
-    geometry::SpacingField field(d.dx, grading);
-    field.add_feature(bore, fine, true);
+  if (sp.fitted) {
+    geometry::SpacingField field(sp.dx, sp.grading);
+    field.add_feature(bore, sp.fine, true);
     add_body_fitted(sim, geometry::make_region(rim, {bore}), field,
                     [](double, double) { return 0; });
   } else {
     lattice::fill_region(
-        -b, -b, b, b, d.dx, 0.0, 0.0,
+        -b, -b, b, b, sp.dx, 0.0, 0.0,
         [&](double x, double y) { return x * x + y * y <= b * b && x * x + y * y > a * a; },
         [&](double x, double y) { add_particle(sim, x, y, 0); });
   }
   end_body(sim);
-  Particles& p = sim.particles;
+}
 
-  // The pressure as loads on the particles standing for the bore, each its
-  // share of the bore's length, pushing radially out: the body-fitted
-  // bore row, or a lattice's particles within a spacing of the bore.
+// The pressure as loads on the particles standing for the bore, each its
+// share of the bore's length, pushing radially out: the body-fitted
+// bore row, or a lattice's particles within a spacing of the bore.
+// Returns those particles.
+std::vector<std::size_t> press_bore(Simulation& sim, const SceneSpacings& sp, double a,
+                                    double pressure) {
+  Particles& p = sim.particles;
   std::vector<std::size_t> ring;
   for (std::size_t i = 0; i < p.n; ++i) {
     const double r = std::hypot(p.x[i], p.y[i]);
-    if (fitted ? r < a * (1.0 + 1e-6) : r < a + d.dx) ring.push_back(i);
+    if (sp.fitted ? r < a * (1.0 + 1e-6) : r < a + sp.dx) ring.push_back(i);
   }
   std::sort(ring.begin(), ring.end(), [&](std::size_t u, std::size_t v) {
     return std::atan2(p.y[u], p.x[u]) < std::atan2(p.y[v], p.x[v]);
@@ -91,83 +85,109 @@ Scene build_thick_cylinder(const SceneInput& in) {
     p.load_ax[i] = f * std::cos(t) / p.mass[i];
     p.load_ay[i] = f * std::sin(t) / p.mass[i];
   }
+  return ring;
+}
 
-  scene.outlines.push_back({"ring", 0, {}, true});
-  for (const geometry::Point& q : rim) scene.outlines.back().points.push_back({q.x, q.y});
-  scene.outlines.push_back({"bore", 0, {}, true});
-  for (const geometry::Point& q : bore) scene.outlines.back().points.push_back({q.x, q.y});
-  sim.domain = grown_bounds(p, 2.0 * b);
+// Mean hoop stress and radial displacement round the bore, and their ranges.
+struct Bore {
+  double hoop = 0, hoop_min = 1e300, hoop_max = -1e300, u = 0, u_min = 1e300, u_max = -1e300;
+};
 
-  // Dynamic relaxation of the breathing mode, omega = c / r_mean with the
-  // plane-strain bar speed (a thin ring's; the thick one's is near it).
-  const double c_bar = std::sqrt(mat.E / (mat.rho0 * (1.0 - mat.nu * mat.nu)));
-  const double omega1 = c_bar / (0.5 * (a + b));
-  sim.damping_1_s = omega1;
-  sim.load_ramp_s = 10.0 * 2.0 * kPi / omega1;
-  scene.default_end_s = 2.0 * sim.load_ramp_s;
+// The bore's stress and displacement, recovered at points of its outline.
+// The bore row carries the pressure as forces: its own stress does not
+// see the load (stress_recovery.hpp), so the bore's stress is extrapolated
+// from inside, by a linear fit (a quadratic one extrapolated across a
+// spacing swings); its displacement, which the row has right, from all.
+struct BoreReadout {
+  std::shared_ptr<const diagnostics::StressRecovery> stress, displacement;
+};
 
-  const double hoop_ref = pressure * (b * b + a * a) / (b * b - a * a);
-  const double u_ref = (1.0 + mat.nu) * pressure * a * a / (mat.E * (b * b - a * a)) *
-                       ((1.0 - 2.0 * mat.nu) * a + b * b / a);
-
+BoreReadout bore_readout(const Simulation& sim, double a, const std::vector<std::size_t>& ring) {
   std::vector<geometry::Point> at;
   for (int k = 0; k < kBorePoints; ++k) {
     const double t = 2.0 * kPi * k / kBorePoints;
     at.push_back({a * std::cos(t), a * std::sin(t)});
   }
-  // The bore row carries the pressure as forces: its own stress does not
-  // see the load (stress_recovery.hpp), so the bore's stress is extrapolated
-  // from inside, by a linear fit (a quadratic one extrapolated across a
-  // spacing swings); its displacement, which the row has right, from all.
-  std::vector<std::uint8_t> loaded(p.n, 0);
+  std::vector<std::uint8_t> loaded(sim.particles.n, 0);
   for (std::size_t i : ring) loaded[i] = 1;
-  auto recovery = std::make_shared<const diagnostics::StressRecovery>(sim, 0, at, 1, &loaded);
-  auto moved = std::make_shared<const diagnostics::StressRecovery>(sim, 0, at);
-  // Mean hoop stress and radial displacement round the bore, and their ranges.
-  struct Bore {
-    double hoop = 0, hoop_min = 1e300, hoop_max = -1e300, u = 0, u_min = 1e300, u_max = -1e300;
-  };
-  auto read = [recovery, moved](const Simulation& s2) {
-    const std::vector<diagnostics::RecoveredStress> r = recovery->recover(s2);
-    const std::vector<diagnostics::RecoveredStress> u_at = moved->recover(s2);
-    Bore out;
-    for (int k = 0; k < kBorePoints; ++k) {
-      const double t = 2.0 * kPi * k / kBorePoints, c = std::cos(t), sn = std::sin(t);
-      const double hoop = sn * sn * r[k].xx - 2.0 * sn * c * r[k].xy + c * c * r[k].yy;
-      const double u = c * u_at[k].ux + sn * u_at[k].uy;
-      out.hoop += hoop / kBorePoints;
-      out.u += u / kBorePoints;
-      out.hoop_min = std::min(out.hoop_min, hoop);
-      out.hoop_max = std::max(out.hoop_max, hoop);
-      out.u_min = std::min(out.u_min, u);
-      out.u_max = std::max(out.u_max, u);
-    }
-    return out;
-  };
-  scene.columns.push_back(
-      {"bore_hoop_stress_Pa", [read](const Simulation& s2) { return read(s2).hoop; }});
-  scene.columns.push_back(
-      {"bore_displacement_m", [read](const Simulation& s2) { return read(s2).u; }});
-  scene.description = {{"particles", fitted ? "body_fitted" : "lattice"},
-                       {"fine_spacing_m", fine},
-                       {"bulk_spacing_m", d.dx},
-                       {"reference_bore_hoop_stress_Pa", hoop_ref},
+  return {std::make_shared<const diagnostics::StressRecovery>(sim, 0, at, 1, &loaded),
+          std::make_shared<const diagnostics::StressRecovery>(sim, 0, at)};
+}
+
+Bore read_bore(const BoreReadout& readout, const Simulation& s2) {
+  const std::vector<diagnostics::RecoveredStress> r = readout.stress->recover(s2);
+  const std::vector<diagnostics::RecoveredStress> u_at = readout.displacement->recover(s2);
+  Bore out;
+  for (int k = 0; k < kBorePoints; ++k) {
+    const double t = 2.0 * kPi * k / kBorePoints, c = std::cos(t), sn = std::sin(t);
+    const double hoop = sn * sn * r[k].xx - 2.0 * sn * c * r[k].xy + c * c * r[k].yy;
+    const double u = c * u_at[k].ux + sn * u_at[k].uy;
+    out.hoop += hoop / kBorePoints;
+    out.u += u / kBorePoints;
+    out.hoop_min = std::min(out.hoop_min, hoop);
+    out.hoop_max = std::max(out.hoop_max, hoop);
+    out.u_min = std::min(out.u_min, u);
+    out.u_max = std::max(out.u_max, u);
+  }
+  return out;
+}
+
+// The bore's mean hoop stress and displacement against Lame's.
+nlohmann::json analyse_thick_cylinder(const Bore& r, double hoop_ref, double u_ref) {
+  nlohmann::json out;
+  out["reference"] =
+      "Lame, plane strain: sigma_t(a) = p (b^2 + a^2)/(b^2 - a^2), u(a) = (1 + nu) p a^2 / "
+      "(E (b^2 - a^2)) [(1 - 2 nu) a + b^2 / a]";
+  out["bore_hoop_stress_Pa"] = r.hoop;
+  out["reference_bore_hoop_stress_Pa"] = hoop_ref;
+  out["bore_hoop_stress_range_Pa"] = {r.hoop_min, r.hoop_max};
+  out["bore_displacement_m"] = r.u;
+  out["reference_bore_displacement_m"] = u_ref;
+  out["bore_displacement_range_m"] = {r.u_min, r.u_max};
+  out["hoop_error"] = (r.hoop - hoop_ref) / hoop_ref;
+  out["displacement_error"] = (r.u - u_ref) / u_ref;
+  return out;
+}
+
+}  // namespace
+
+Scene build_thick_cylinder(const SceneInput& in) {
+  const nlohmann::json& s = in.scene;
+  const double a = s.at("inner_radius_m").get<double>(), b = s.at("outer_radius_m").get<double>();
+  const double pressure = s.at("pressure_Pa").get<double>();
+  const Material mat = read_material(s.at("material"));
+  if (!(b > a)) throw JobError("/scene/outer_radius_m", "the outer radius must exceed the bore's");
+
+  Scene scene = start_scene("thick_cylinder", in);
+  Simulation& sim = scene.sim;
+  const SceneSpacings sp = wall_spacings(sim.discretization, a, b);
+  const geometry::Polygon bore = geometry::circle({0.0, 0.0}, a, 1e-5 * a);
+  const geometry::Polygon rim = geometry::circle({0.0, 0.0}, b, 1e-5 * b);
+  fill_ring(sim, sp, bore, rim, a, b, mat);
+  const std::vector<std::size_t> ring = press_bore(sim, sp, a, pressure);
+  scene.outlines.push_back(polygon_outline("ring", 0, rim));
+  scene.outlines.push_back(polygon_outline("bore", 0, bore));
+  sim.domain = grown_bounds(sim.particles, 2.0 * b);
+
+  // Dynamic relaxation of the breathing mode, omega = c / r_mean with the
+  // plane-strain bar speed (a thin ring's; the thick one's is near it).
+  const double c_bar = std::sqrt(mat.E / (mat.rho0 * (1.0 - mat.nu * mat.nu)));
+  relax_to_static(scene, c_bar / (0.5 * (a + b)));
+
+  const double hoop_ref = pressure * (b * b + a * a) / (b * b - a * a);
+  const double u_ref = (1.0 + mat.nu) * pressure * a * a / (mat.E * (b * b - a * a)) *
+                       ((1.0 - 2.0 * mat.nu) * a + b * b / a);
+  const BoreReadout readout = bore_readout(sim, a, ring);
+  scene.columns.push_back({"bore_hoop_stress_Pa", [readout](const Simulation& s2) {
+                             return read_bore(readout, s2).hoop;
+                           }});
+  scene.columns.push_back({"bore_displacement_m",
+                           [readout](const Simulation& s2) { return read_bore(readout, s2).u; }});
+  scene.description = {{"reference_bore_hoop_stress_Pa", hoop_ref},
                        {"reference_bore_displacement_m", u_ref}};
+  describe_spacings(scene.description, sp);
   scene.analyse = [=](const History&, const Simulation& s2) {
-    const Bore r = read(s2);
-    nlohmann::json out;
-    out["reference"] =
-        "Lame, plane strain: sigma_t(a) = p (b^2 + a^2)/(b^2 - a^2), u(a) = (1 + nu) p a^2 / "
-        "(E (b^2 - a^2)) [(1 - 2 nu) a + b^2 / a]";
-    out["bore_hoop_stress_Pa"] = r.hoop;
-    out["reference_bore_hoop_stress_Pa"] = hoop_ref;
-    out["bore_hoop_stress_range_Pa"] = {r.hoop_min, r.hoop_max};
-    out["bore_displacement_m"] = r.u;
-    out["reference_bore_displacement_m"] = u_ref;
-    out["bore_displacement_range_m"] = {r.u_min, r.u_max};
-    out["hoop_error"] = (r.hoop - hoop_ref) / hoop_ref;
-    out["displacement_error"] = (r.u - u_ref) / u_ref;
-    return out;
+    return analyse_thick_cylinder(read_bore(readout, s2), hoop_ref, u_ref);
   };
   return scene;
 }
