@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "apps/gearsph/cli.hpp"
-#include "apps/gearsph/serve_images.hpp"
+#include "apps/gearsph/frame_image.hpp"
 #include "render/plot_image.hpp"
 #include "render/png_io.hpp"
 
@@ -52,12 +52,9 @@ void write_png(const std::string& path, const std::string& bytes) {
 
 constexpr const char* kResultsFileName = "results.h5";
 
-}  // namespace
-
-int cmd_render(Args& args) {
-  const std::string out = args.option("out").value_or("");
-  const std::string frames = args.option("frames").value_or("");
-  server::ImageRequest request;
+// --field, --frame, --zoom and --range.
+FrameImageRequest read_frame_request(Args& args) {
+  FrameImageRequest request;
   request.field = args.option("field").value_or("von_mises");
   request.frame = args.integer("frame", -1);
   if (const auto zoom = args.option("zoom")) {
@@ -72,9 +69,13 @@ int cmd_render(Args& args) {
     if (!(r[0] < r[1])) throw std::invalid_argument(usage + ", got '" + *range + "'");
     request.range = std::array<double, 2>{r[0], r[1]};
   }
-  const std::vector<std::string> pos = args.positional();
+  return request;
+}
+
+// The run directory the one positional argument names: a run directory, or
+// its results.h5.
+std::filesystem::path run_directory(const std::vector<std::string>& pos) {
   if (pos.size() != 1) throw std::invalid_argument("render: one run directory or results.h5");
-  // A run directory, or its results.h5.
   std::filesystem::path dir = pos.front();
   if (dir.extension() == ".h5") {
     if (dir.filename() != kResultsFileName) {
@@ -83,38 +84,61 @@ int cmd_render(Args& args) {
     }
     dir = dir.parent_path().empty() ? "." : dir.parent_path();
   }
-  if (out.empty()) throw std::invalid_argument("render: --out is required");
-  if (!frames.empty() && frames != "all") {
-    throw std::invalid_argument("render: --frames takes 'all' (or use --frame N)");
+  return dir;
+}
+
+// The exit status of a frame that was not drawn: 1 when the results could not
+// be read or drawn, 2 when the request asks for what they do not hold.
+int exit_status(FrameImageFault fault) {
+  switch (fault) {
+    case FrameImageFault::no_results:
+    case FrameImageFault::drawing_failed:
+      return 1;
+    case FrameImageFault::unknown_field:
+    case FrameImageFault::no_colour_scale:
+    case FrameImageFault::no_frames:
+    case FrameImageFault::no_such_frame:
+      break;
   }
-  const server::ImageProvider provider = results_image_provider();
-  if (!provider) throw std::runtime_error("this build has no renderer (OSMesa, HDF5)");
-  if (frames.empty()) {
-    const server::ImageResult image = provider(dir, request);
-    if (image.status != 200) {
-      std::fprintf(stderr, "gearsph render: %s\n", image.detail.c_str());
-      return image.status == 500 ? 1 : 2;
-    }
-    write_png(out, image.png);
-    std::printf("wrote %s\n", out.c_str());
-    return 0;
+  return 2;
+}
+
+int render_one(const std::filesystem::path& dir, const FrameImageRequest& request,
+               const std::string& out) {
+  std::string png;
+  try {
+    png = draw_frame_png(dir, request);
+  } catch (const FrameImageError& e) {
+    std::fprintf(stderr, "gearsph render: %s\n", e.what());
+    return exit_status(e.fault());
   }
-  // --frames all: OUT is a directory of FIELD_NNNN.png, frame by frame until
-  // the results have no more.
+  write_png(out, png);
+  std::printf("wrote %s\n", out.c_str());
+  return 0;
+}
+
+// --frames all: OUT is a directory of FIELD_NNNN.png, frame by frame until
+// the results have no more.
+int render_all(const std::filesystem::path& dir, FrameImageRequest request,
+               const std::string& out) {
   std::filesystem::create_directories(out);
   int written = 0;
   for (request.frame = 0;; ++request.frame) {
-    const server::ImageResult image = provider(dir, request);
-    if (image.status == 404) break;
-    if (image.status != 200) {
+    std::string png;
+    try {
+      png = draw_frame_png(dir, request);
+    } catch (const FrameImageError& e) {
+      const bool past_the_last =
+          e.fault() == FrameImageFault::no_frames || e.fault() == FrameImageFault::no_such_frame;
+      if (past_the_last) break;
       std::fprintf(stderr, "gearsph render: frame %lld: %s\n",
-                   static_cast<long long>(request.frame), image.detail.c_str());
-      return image.status == 500 ? 1 : 2;
+                   static_cast<long long>(request.frame), e.what());
+      return exit_status(e.fault());
     }
     char name[64];
     std::snprintf(name, sizeof name, "/%s_%04lld.png", request.field.c_str(),
                   static_cast<long long>(request.frame));
-    write_png(out + name, image.png);
+    write_png(out + name, png);
     ++written;
   }
   if (written == 0) {
@@ -124,6 +148,20 @@ int cmd_render(Args& args) {
   }
   std::printf("wrote %d frames to %s\n", written, out.c_str());
   return 0;
+}
+
+}  // namespace
+
+int cmd_render(Args& args) {
+  const std::string out = args.option("out").value_or("");
+  const std::string frames = args.option("frames").value_or("");
+  const FrameImageRequest request = read_frame_request(args);
+  const std::filesystem::path dir = run_directory(args.positional());
+  if (out.empty()) throw std::invalid_argument("render: --out is required");
+  if (!frames.empty() && frames != "all") {
+    throw std::invalid_argument("render: --frames takes 'all' (or use --frame N)");
+  }
+  return frames.empty() ? render_one(dir, request, out) : render_all(dir, request, out);
 }
 
 // History columns of DIR/history.csv against time, one series each.

@@ -164,16 +164,15 @@ int cmd_plot(Args& args);
 
 namespace {
 
-// How OpenMP threads wait at a barrier (docs/speed-accuracy.md, Threads).
-// libgomp reads its policy once, when it is loaded, before main: only a
-// fresh process image can choose one. A ~0.1 ms time step hands over
-// between threads ~7 times, so threads that sleep at once (passive) pay a
-// wake-up each time: 2 threads were 2.5x slower than with a short spin.
-// Threads that spin long (the default, 300,000 rounds) starve each other
-// when two runs share the cores: 45x slower. A spin of 1,000 rounds, then
-// sleep, is within 10 % of the fastest alone and 2x slower than passive
-// when shared. A policy the caller set (OMP_WAIT_POLICY, GOMP_SPINCOUNT) is
-// kept.
+// How OpenMP threads wait at a barrier. libgomp reads its policy once, when
+// it is loaded, before main: only a fresh process image can choose one. A
+// time step hands over between threads several times, so threads that sleep
+// at once (passive) pay a wake-up at each, and threads that spin long (the
+// default, 300,000 rounds) starve each other when two runs share the cores.
+// A spin of 1,000 rounds, then sleep, is close to the fastest alone and,
+// unlike a long spin, does not starve a run it shares the cores with. A
+// policy the caller set (OMP_WAIT_POLICY, GOMP_SPINCOUNT) is kept.
+// Measurements: docs/speed-accuracy.md, "Threads".
 void choose_openmp_wait(char** argv) {
   if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
   setenv("GOMP_SPINCOUNT", "1000", 1);
@@ -185,19 +184,16 @@ void choose_openmp_wait(char** argv) {
 int main(int argc, char** argv) {
   choose_openmp_wait(argv);
   // Arrays of 1 MiB and more (every column of a scene past 130,000
-  // particles) are mapped on their own and unmapped when freed. A server or
-  // bench that runs scenes of many sizes then does not carve its heap into
-  // holes: they raised a 1e6-particle plate's set-up peak from 930 to 1,105
-  // bytes a particle. A fixed threshold also stops glibc raising it after
-  // the first such free (docs/speed-accuracy.md, ninth round). Not lower:
-  // at 64 KiB every compressed chunk HDF5 wrote mapped and unmapped zlib's
-  // 64 KiB buffers, 2,100 times in a 2,000-step plate with its 51 frames,
-  // and a quarter of that run went to the kernel (docs/speed-accuracy.md,
-  // "Outputs").
+  // particles) are mapped on their own and unmapped when freed, so a server
+  // or bench that runs scenes of many sizes does not carve its heap into
+  // holes that raise a later scene's peak memory; a fixed threshold also
+  // stops glibc raising it after the first such free. Not lower: zlib's
+  // buffers for each chunk HDF5 compresses would then be mapped and unmapped
+  // every time. See docs/speed-accuracy.md, "Outputs".
   mallopt(M_MMAP_THRESHOLD, static_cast<int>(gearsph::kMapFrom));
-  // And the heap's top is kept, up to 64 MiB, not handed back at every free
-  // (with the threshold fixed, glibc trims above 128 KiB: 3,200 brk calls,
-  // 0.7 s of that plate's 2.7 s).
+  // And the heap's top is kept, up to 64 MiB, not handed back at every free:
+  // with the mmap threshold fixed, glibc's trim threshold stays at 128 KiB
+  // (same section).
   mallopt(M_TRIM_THRESHOLD, 64 << 20);
 #ifdef GEARSPH_WITH_RESULTS
   gearsph::results::register_outputs();

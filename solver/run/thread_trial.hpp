@@ -9,13 +9,13 @@
 // The trial steps a copy: the run itself starts from the untouched scene, so
 // its results are those of a run told the chosen count from the start.
 //
-// A trial of ~40 ms that falls in a spell of load chooses for the whole run:
-// the paper's case once took one thread and 88 s instead of ~55 s
-// (docs/speed-accuracy.md, eleventh round). So a run repeats the trial, on a
-// copy of its current state, every kRetrialSeconds, and switches to the new
-// choice. A run without a switch is still that of a run told its count from
-// the start; each switch changes the round-off from there on (the threads'
-// sums meet in another order), and the summary lists the switches.
+// A trial of ~40 ms that falls in a spell of load would choose for the
+// whole run, so a run repeats the trial, on a copy of its current state,
+// every kRetrialSeconds, and switches to the new choice
+// (docs/speed-accuracy.md, "Threads"). A run without a switch is still that
+// of a run told its count from the start; each switch changes the round-off
+// from there on (the threads' sums meet in another order), and the summary
+// lists the switches.
 #include <vector>
 
 #include "solver/core/simulation.hpp"
@@ -41,9 +41,8 @@ ThreadTrial trial_threads(const Simulation& sim, int most);
 // The count a run at `current` threads takes after repeating the trial:
 // the trial's choice if that beats `current` by kTrialMargin, else
 // `current` (also after a diverged trial). Within the margin, as in a spell
-// where one thread and two step alike, the run stays: two runs of the
-// paper's case that switched to one thread there (83-87 us a step against
-// 84-86 on two) stayed on it 10-20 s, past the spell's end.
+// where one thread and two step alike, the run stays: a switch there can
+// keep a run on fewer threads long past the spell's end (same section).
 int threads_after_retrial(const ThreadTrial& again, int current);
 
 }  // namespace gearsph
