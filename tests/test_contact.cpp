@@ -275,7 +275,7 @@ TEST(Contact, SurfaceSmoothingIsAPartitionOfUnityThatFollowsRigidMotion) {
 }
 
 TEST(Contact, KernelCouplingSticks) {
-  // The paper's motivation: bodies coupled through the kernel adhere.
+  // The seed paper's motivation: bodies coupled through the kernel adhere.
   PreparedJob job = prepare_job(bars("kernel", "updated_lagrangian"), 2);
   const RunResult r = run_job(job);
   ASSERT_EQ(r.status, "completed") << r.message;

@@ -106,7 +106,7 @@ TEST(GearGeometry, RadiiFollowTheFormulasAndTheOutline) {
     EXPECT_NEAR(r_max, g.tip_radius(), 1e-12);
     EXPECT_NEAR(r_min, g.root_radius(), 1e-12);
   }
-  // The paper's pinion: z = 12, m = 4 mm, alpha = 20 deg, x = 0.
+  // The seed paper's pinion: z = 12, m = 4 mm, alpha = 20 deg, x = 0.
   const PinionGeometry paper(pinion_spec(12, 4e-3, 20.0, 0.0));
   EXPECT_NEAR(paper.pitch_radius(), 24e-3, 1e-15);
   EXPECT_NEAR(paper.tip_radius(), 28e-3, 1e-15);
@@ -262,7 +262,7 @@ TEST(GearGeometry, UndercutStartMatchesTheTrochoidConstruction) {
     EXPECT_NEAR(g.form_radius(), expected, 1e-9);
     EXPECT_GT(g.form_radius(), g.base_radius());
   }
-  // The paper's pinion: the involute is cut back to 22.605 mm (r_b = 22.553 mm).
+  // The seed paper's pinion: the involute is cut back to 22.605 mm (r_b = 22.553 mm).
   const PinionGeometry paper(pinion_spec(12, 4e-3, 20.0, 0.0));
   EXPECT_NEAR(paper.form_radius(), 22.6054e-3, 1e-7);
 }

@@ -42,7 +42,7 @@ TEST(GradedKernel, TheSetIsGradedEightToOne) {
 // excess is the second-order term of a smoothing length that varies across
 // the support (h_ij = (h_i + h_j) / 2 cancels the first-order one). The
 // pair's smaller length instead of the mean gives 3.3-4.3 %, the larger
-// 6.3-6.9 %. The paper's quartic is left out: with its cusp (f'(0) = -64) and h = dx
+// 6.3-6.9 %. The seed paper's quartic is left out: with its cusp (f'(0) = -64) and h = dx
 // its own term is 0.46 of the sum, so its sums depend on the packing, not
 // the grading: 1.10-1.13 in the uniform 2 mm bulk of this plate, whose
 // relaxed packing is nearly hexagonal (docs/method.md). The total-Lagrangian

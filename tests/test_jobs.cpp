@@ -45,7 +45,7 @@ TEST(Jobs, ThreadsFollowTheSceneSizeUnlessSet) {
   EXPECT_EQ(threads_for(2 * kParticlesPerThread, 1), 1);
   EXPECT_EQ(threads_for(100 * kParticlesPerThread, 8), 8);
   EXPECT_EQ(threads_for(0, 0), 1);
-  // The paper's case (918 particles, 1e6 steps): a trial of 1 and 2 threads
+  // The seed paper's case (918 particles, 1e6 steps): a trial of 1 and 2 threads
   // unless the command line or the job says.
   const json gear = {{"scene", {{"type", "rack_pinion"}}}};
   const PreparedJob paper = prepare_job(gear, 0, 2);

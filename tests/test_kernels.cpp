@@ -88,7 +88,7 @@ struct LatticeQuality {
 };
 
 TEST(Kernels, LatticeSumsAtDefaultSmoothingLength) {
-  // The paper's quartic has a cusp (f'(0) = -64) that inflates W(0): at its
+  // The seed paper's quartic has a cusp (f'(0) = -64) that inflates W(0): at its
   // own h = dx the Shepard sum is 10.6 % high and the gradient moment 5.9 %
   // low, against 0.01 % for the quintic spline of the same support. Kept as
   // measured (method.md: do not "fix" it); the gradient correction removes

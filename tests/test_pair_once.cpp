@@ -350,13 +350,13 @@ TEST(PairOnce, ChunksFollowTheApproachingPairsAndRunsRepeatBitForBit) {
   }
 }
 
-// A scene of one material and one spacing (the paper's gear) takes the
+// A scene of one material and one spacing (the seed paper's gear) takes the
 // pairs' masses and sound speeds as constants; the step must give
 // the same bits as with them gathered per pair. A scene of two materials
 // (the Hertz cylinder on its block) keeps the gathers.
 TEST(PairOnce, UniformScenesTakeConstantsAndGiveTheSameBits) {
   auto gear = [](bool constants) {
-    // The paper's lattice: one mass and one sound speed for every particle.
+    // The seed paper's lattice: one mass and one sound speed for every particle.
     PreparedJob prepared = prepare_job(
         {{"scene", {{"type", "rack_pinion"}}}, {"discretization", {{"particles", "lattice"}}}}, 2);
     Simulation sim = prepared.scene.sim;

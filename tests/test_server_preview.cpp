@@ -70,7 +70,7 @@ TEST_F(ServerPreview, PaperCaseGeometryAgreesWithSubmission) {
   EXPECT_FALSE(p.at("model").at("pinion").at("modelled_teeth").empty());
   EXPECT_GT(p.at("model").at("rack").at("modelled_teeth").get<int>(), 0);
 
-  // The paper's time span and step.
+  // The seed paper's time span and step.
   EXPECT_DOUBLE_EQ(p.at("end_s").get<double>(), 0.04);
   EXPECT_DOUBLE_EQ(p.at("dt_s").get<double>(), 4e-8);
   EXPECT_LE(p.at("dt_s").get<double>(), p.at("dt_limit_s").get<double>());
@@ -89,7 +89,7 @@ TEST_F(ServerPreview, PaperCaseGeometryAgreesWithSubmission) {
 
 TEST_F(ServerPreview, ParametersChangeTheGeometry) {
   auto c = server_->client();
-  // On the paper's lattice a larger pinion at half the spacing has more than
+  // On the seed paper's lattice a larger pinion at half the spacing has more than
   // three times the particles (body-fitted particles keep the fillets' own
   // spacing, so the rim's spacing moves their count less).
   json paper_lattice = kPaperCase;

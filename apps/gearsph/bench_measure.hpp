@@ -1,6 +1,6 @@
 #pragma once
 // What `gearsph bench` and `gearsph bench pareto` measure with: CPU time,
-// the bench's two jobs (the oscillating plate and the paper's gear), and
+// the bench's two jobs (the oscillating plate and the seed paper's gear), and
 // bare time steps with the memory they hold.
 //
 // Timings are wall clock and process CPU time. The machine may be shared:
@@ -27,7 +27,7 @@ double children_cpu_seconds();
 // L 0.2 m, H 0.02 m, E 2 MPa, nu 0.3975, rho 1000, clamp L/4.
 json plate_job(double dx_m, double vf = 0.01);
 
-// The paper's gear case: every field at its default.
+// The seed paper's gear case: every field at its default.
 json gear_job();
 
 struct Timing {

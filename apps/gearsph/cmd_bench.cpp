@@ -1,7 +1,7 @@
 // gearsph bench: the speed numbers of issue 7 side by side in one run
 // (throughput of the plate and the gear case at 1 and 2 threads, PySPH on
 // the same plate, cost per particle-step from 1e3 to 1e6 particles, memory
-// per particle, the paper's full case, a study through the service); each
+// per particle, the seed paper's full case, a study through the service); each
 // section is a function below. `gearsph bench pareto` (error against cost)
 // runs the sweeps of bench_pareto.hpp; the timing itself is
 // bench_measure.hpp.
@@ -165,7 +165,7 @@ double utc_seconds(const std::string& t) {
   return double(timegm(&tm)) + sec;
 }
 
-// A study of `jobs` copies of the paper's case (the first `end_s` of it):
+// A study of `jobs` copies of the seed paper's case (the first `end_s` of it):
 // the study's record once it has ended.
 json run_study(server::HttpClient& c, int jobs, double end_s) {
   json base = {{"scene", {{"type", "rack_pinion"}}}, {"time", {{"end_s", end_s}}}};
@@ -210,7 +210,7 @@ StudyJobs study_jobs(server::HttpClient& c, const json& done) {
   return s;
 }
 
-// A study of `jobs` copies of the paper's case (the first `end_s` of it)
+// A study of `jobs` copies of the seed paper's case (the first `end_s` of it)
 // submitted at once to `gearsph serve` at its defaults: how long the
 // study takes against one job's time, and jobs per hour.
 json study_throughput(const std::filesystem::path& dir, int jobs, double end_s) {
@@ -599,7 +599,7 @@ void bench_scaling(const BenchOptions& o, json& report) {
   std::printf("\n");
 }
 
-// ------------------------------------------ 4. the paper's full case
+// ------------------------------------------ 4. the seed paper's full case
 
 // 1e6 steps of 4e-8 s, as `gearsph run` does it. --quick: the first 2 % of
 // the steps, scaled. The scene is built for the full end time (it models
@@ -630,7 +630,7 @@ void bench_full_case(const BenchOptions& o, json& report) {
 // ------------------------------------------ 5. a study through the service
 
 #ifdef GEARSPH_WITH_SERVICE
-// As design automation submits one: the paper's case N times (--quick: its
+// As design automation submits one: the seed paper's case N times (--quick: its
 // first 2 ms), at the server's defaults.
 void bench_study(const BenchOptions& o, json& report) {
   const double end_s = o.quick ? 0.002 : 0.04;

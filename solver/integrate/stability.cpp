@@ -159,6 +159,115 @@ class Borrowed {
   std::vector<Column<double>> saved_;
 };
 
+// The largest angular frequency of the undamped elastic operator: power
+// iteration on K u = -(a(X + eps u) - a(X)) / eps, the total-Lagrangian
+// stress and momentum passes at the reference positions (set up by the
+// caller, without viscosity).
+double elastic_omega_max(Simulation& sim) {
+  Particles& p = sim.particles;
+  const std::size_t n = p.n;
+  physics::total_lagrangian_stress(sim);
+  physics::total_lagrangian_momentum(sim, 0.0);
+  // The forces of the undeformed scene, subtracted from those of each
+  // perturbed one. They vanish to the bit where x = X (u = 0, so F = I and
+  // P = 0 exactly), and are then not stored.
+  const bool a0_zero = std::all_of(p.ax.begin(), p.ax.end(), [](double a) { return a == 0.0; }) &&
+                       std::all_of(p.ay.begin(), p.ay.end(), [](double a) { return a == 0.0; });
+  const Column<double> ax0 = a0_zero ? Column<double>() : p.ax;
+  const Column<double> ay0 = a0_zero ? Column<double>() : p.ay;
+  const double eps = 1e-6 * sim.discretization.dx;
+  const double lambda_k =
+      largest_eigenvalue(sim, [&](const std::vector<double>& ux, const std::vector<double>& uy) {
+        for (std::size_t i = 0; i < n; ++i) {
+          p.x[i] = p.x0[i] + eps * ux[i];
+          p.y[i] = p.y0[i] + eps * uy[i];
+        }
+        physics::total_lagrangian_stress(sim);
+        physics::total_lagrangian_momentum(sim, 0.0);
+        for (std::size_t i = 0; i < n; ++i) {
+          p.ax[i] = -(p.ax[i] - (a0_zero ? 0.0 : ax0[i])) / eps;
+          p.ay[i] = -(p.ay[i] - (a0_zero ? 0.0 : ay0[i])) / eps;
+        }
+      });
+  return std::sqrt(std::max(lambda_k, 0.0));
+}
+
+// The largest rate of the artificial viscosity's linear part, every pair
+// taken as approaching (Monaghan 1992, eq. 4.1, the alpha term):
+//   a_i = sum_j m_j alpha c_ij h (v_ij . x_ij) / ((r^2 + eta^2) rho_ij) grad_i W_ij.
+double viscous_damping_rate(Simulation& sim, const ArtificialViscosity& av) {
+  Particles& p = sim.particles;
+  const double h = sim.h(), eta2 = std::pow(av.eta_over_h * h, 2);
+  const ReferencePairs& rp = sim.reference;
+  // Each pair once, to both ends, in a fixed number of chunks whatever the
+  // threads (RowChunks): the estimate, and so the step, does not depend on
+  // the thread count. Serial, this loop took 7.5 s of a 1e6-particle
+  // plate's set-up.
+  RowChunks chunks;
+  chunks.plan(rp.rows, rp.j, kDampingChunks, 2);
+  // Pairs of rows lo .. hi of one chunk, into ax, ay and the chunk's spill.
+  auto chunk_pairs = [&](int chunk, const std::vector<double>& vx, const std::vector<double>& vy) {
+    double* const ax = p.ax.data();
+    double* const ay = p.ay.data();
+    const std::size_t lo = chunks.begin(chunk), hi = chunks.end(chunk);
+    std::fill(ax + lo, ax + hi, 0.0);
+    std::fill(ay + lo, ay + hi, 0.0);
+    double* const spill[2] = {chunks.spill(chunk, 0), chunks.spill(chunk, 1)};
+    for (std::size_t i = lo; i < hi; ++i) {
+      for (std::uint32_t k = rp.rows[i]; k < rp.rows[i + 1]; ++k) {
+        const std::uint32_t j = rp.j[k];
+        const double dx = p.x0[i] - p.x0[j], dy = p.y0[i] - p.y0[j];
+        const double r2 = dx * dx + dy * dy, r = std::sqrt(r2);
+        const double vr = (vx[i] - vx[j]) * dx + (vy[i] - vy[j]) * dy;
+        // Graded particles: the pair's h_ij (total_lagrangian.hpp).
+        const double hij = rp.hp.empty() ? h : 0.5 * (rp.hp[i] + rp.hp[j]);
+        const double e2 = rp.hp.empty() ? eta2 : std::pow(av.eta_over_h * hij, 2);
+        const double coef = physics::monaghan_linear(av.alpha, 0.5 * (p.cs[i] + p.cs[j]), hij,
+                                                     r2 + e2, 0.5 * (p.rho0[i] + p.rho0[j]));
+        const double g = rp.dw0[k] / r;  // grad_i W_ij = g (dx, dy)
+        const double sx = coef * vr * g * dx, sy = coef * vr * g * dy;
+        ax[i] -= p.mass[j] * sx;  // a = -D v with D positive semi-definite
+        ay[i] -= p.mass[j] * sy;
+        if (k < chunks.cross(i)) {
+          ax[j] += p.mass[i] * sx;
+          ay[j] += p.mass[i] * sy;
+        } else {
+          spill[0][j - hi] += p.mass[i] * sx;
+          spill[1][j - hi] += p.mass[i] * sy;
+        }
+      }
+    }
+  };
+  return largest_eigenvalue(sim, [&](const std::vector<double>& vx, const std::vector<double>& vy) {
+#pragma omp parallel num_threads(sim.threads)
+    {
+#pragma omp for schedule(static)
+      for (int c = 0; c < kDampingChunks; ++c) chunk_pairs(c, vx, vy);
+        // (the loop's closing barrier: every window is written)
+#pragma omp for schedule(static)
+      for (int c = 0; c < kDampingChunks; ++c) {
+        double* const sums[2] = {p.ax.data(), p.ay.data()};
+        chunks.add_spills(c, sums, 2);
+      }
+    }
+  });
+}
+
+// The stable step of leapfrog for the oscillator u'' + g u' + w^2 u = 0,
+// 2 (sqrt(w^2 + g^2/4) - g/2) / w^2, shortened by the Courant condition's
+// |v| (moving particles carry signals faster) and kept below by kSafety.
+double stable_step(const Simulation& sim, double w, double g) {
+  const Particles& p = sim.particles;
+  double dt = w > 0 ? 2.0 * (std::sqrt(w * w + 0.25 * g * g) - 0.5 * g) / (w * w) : 1e300;
+  double c_max = 0.0, cv_max = 0.0;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    c_max = std::max(c_max, p.cs[i]);
+    cv_max = std::max(cv_max, p.cs[i] + std::hypot(p.vx[i], p.vy[i]));
+  }
+  if (cv_max > 0) dt *= c_max / cv_max;
+  return kSafety * dt;
+}
+
 }  // namespace
 
 StabilityLimit estimate_stability_limit(Simulation& sim) {
@@ -173,107 +282,15 @@ StabilityLimit estimate_stability_limit(Simulation& sim) {
   sim.method.formulation = Formulation::TotalLagrangian;
   sim.method.viscosity.alpha = sim.method.viscosity.beta = 0.0;
   if (updated) sim.method.hourglass.coefficient = 0.0;  // a damping in UL, not a stiffness
-  Particles& p = sim.particles;
-  const std::size_t n = p.n;
-  p.x = p.x0;
-  p.y = p.y0;
+  sim.particles.x = sim.particles.x0;
+  sim.particles.y = sim.particles.y0;
   physics::total_lagrangian_setup(sim);
-  physics::total_lagrangian_stress(sim);
-  physics::total_lagrangian_momentum(sim, 0.0);
-  // The forces of the undeformed scene, subtracted from those of each
-  // perturbed one. They vanish to the bit where x = X (u = 0, so F = I and
-  // P = 0 exactly), and are then not stored.
-  const bool a0_zero = std::all_of(p.ax.begin(), p.ax.end(), [](double a) { return a == 0.0; }) &&
-                       std::all_of(p.ay.begin(), p.ay.end(), [](double a) { return a == 0.0; });
-  const Column<double> ax0 = a0_zero ? Column<double>() : p.ax;
-  const Column<double> ay0 = a0_zero ? Column<double>() : p.ay;
-  const double eps = 1e-6 * sim.discretization.dx;
 
   StabilityLimit out;
-  const double lambda_k =
-      largest_eigenvalue(sim, [&](const std::vector<double>& ux, const std::vector<double>& uy) {
-        for (std::size_t i = 0; i < n; ++i) {
-          p.x[i] = p.x0[i] + eps * ux[i];
-          p.y[i] = p.y0[i] + eps * uy[i];
-        }
-        physics::total_lagrangian_stress(sim);
-        physics::total_lagrangian_momentum(sim, 0.0);
-        for (std::size_t i = 0; i < n; ++i) {
-          p.ax[i] = -(p.ax[i] - (a0_zero ? 0.0 : ax0[i])) / eps;
-          p.ay[i] = -(p.ay[i] - (a0_zero ? 0.0 : ay0[i])) / eps;
-        }
-      });
-  out.omega_max = std::sqrt(std::max(lambda_k, 0.0));
-
-  // Linear part of the artificial viscosity, every pair taken as approaching:
-  // a_i = sum_j m_j alpha c_ij h (v_ij . x_ij) / ((r^2 + eta^2) rho_ij) grad_i W_ij.
-  if (av.alpha > 0.0) {
-    const double h = sim.h(), eta2 = std::pow(av.eta_over_h * h, 2);
-    const ReferencePairs& rp = sim.reference;
-    // Each pair once, to both ends, in a fixed number of chunks whatever
-    // the threads (RowChunks): the estimate, and so the step, does not
-    // depend on the thread count. Serial, this loop took 7.5 s of a
-    // 1e6-particle plate's set-up.
-    RowChunks chunks;
-    chunks.plan(rp.rows, rp.j, kDampingChunks, 2);
-    out.damping_rate =
-        largest_eigenvalue(sim, [&](const std::vector<double>& vx, const std::vector<double>& vy) {
-          double* const ax = p.ax.data();
-          double* const ay = p.ay.data();
-#pragma omp parallel num_threads(sim.threads)
-          {
-#pragma omp for schedule(static)
-            for (int c = 0; c < kDampingChunks; ++c) {
-              const std::size_t lo = chunks.begin(c), hi = chunks.end(c);
-              std::fill(ax + lo, ax + hi, 0.0);
-              std::fill(ay + lo, ay + hi, 0.0);
-              double* const spill[2] = {chunks.spill(c, 0), chunks.spill(c, 1)};
-              for (std::size_t i = lo; i < hi; ++i) {
-                for (std::uint32_t k = rp.rows[i]; k < rp.rows[i + 1]; ++k) {
-                  const std::uint32_t j = rp.j[k];
-                  const double dx = p.x0[i] - p.x0[j], dy = p.y0[i] - p.y0[j];
-                  const double r2 = dx * dx + dy * dy, r = std::sqrt(r2);
-                  const double vr = (vx[i] - vx[j]) * dx + (vy[i] - vy[j]) * dy;
-                  // Graded particles: the pair's h_ij (total_lagrangian.hpp).
-                  const double hij = rp.hp.empty() ? h : 0.5 * (rp.hp[i] + rp.hp[j]);
-                  const double e2 = rp.hp.empty() ? eta2 : std::pow(av.eta_over_h * hij, 2);
-                  const double coef =
-                      physics::monaghan_linear(av.alpha, 0.5 * (p.cs[i] + p.cs[j]), hij, r2 + e2,
-                                               0.5 * (p.rho0[i] + p.rho0[j]));
-                  const double g = rp.dw0[k] / r;  // grad_i W_ij = g (dx, dy)
-                  const double sx = coef * vr * g * dx, sy = coef * vr * g * dy;
-                  ax[i] -= p.mass[j] * sx;  // a = -D v with D positive semi-definite
-                  ay[i] -= p.mass[j] * sy;
-                  if (k < chunks.cross(i)) {
-                    ax[j] += p.mass[i] * sx;
-                    ay[j] += p.mass[i] * sy;
-                  } else {
-                    spill[0][j - hi] += p.mass[i] * sx;
-                    spill[1][j - hi] += p.mass[i] * sy;
-                  }
-                }
-              }
-            }
-        // (the loop's closing barrier: every window is written)
-#pragma omp for schedule(static)
-            for (int c = 0; c < kDampingChunks; ++c) {
-              double* const sums[2] = {ax, ay};
-              chunks.add_spills(c, sums, 2);
-            }
-          }
-        });
-  }
+  out.omega_max = elastic_omega_max(sim);
+  if (av.alpha > 0.0) out.damping_rate = viscous_damping_rate(sim, av);
   out.iterations = kIterations;
-  const double w = out.omega_max, g = out.damping_rate;
-  double dt = w > 0 ? 2.0 * (std::sqrt(w * w + 0.25 * g * g) - 0.5 * g) / (w * w) : 1e300;
-  // The Courant condition's |v|: moving particles carry signals faster.
-  double c_max = 0.0, cv_max = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    c_max = std::max(c_max, p.cs[i]);
-    cv_max = std::max(cv_max, p.cs[i] + std::hypot(p.vx[i], p.vy[i]));
-  }
-  if (cv_max > 0) dt *= c_max / cv_max;
-  out.dt_limit = kSafety * dt;
+  out.dt_limit = stable_step(sim, out.omega_max, out.damping_rate);
   borrowed.give_back();
   return out;
 }

@@ -3,7 +3,7 @@
 // 2 L / c, and separation with reversed velocities (c the bar wave speed,
 // here the plane-strain strip speed sqrt(E / (rho (1 - nu^2)))). With the
 // contact model "kernel" the bars are coupled through the SPH sums and stick
-// instead: the adhesion the paper's contact force avoids. Particles on a
+// instead: the adhesion the seed paper's contact force avoids. Particles on a
 // lattice (the default) or body-fitted, optionally graded from a fine
 // spacing at the facing ends, where the contact is.
 #include <algorithm>

@@ -26,7 +26,7 @@ Scene build_strip_wave(const SceneInput& in);       // validation.md section 2
 Scene build_spinning_disk(const SceneInput& in);    // validation.md section 4
 Scene build_bar_impact(const SceneInput& in);       // validation.md section 3
 Scene build_hertz(const SceneInput& in);            // validation.md section 6
-Scene build_rack_pinion(const SceneInput& in);      // the paper's gear case
+Scene build_rack_pinion(const SceneInput& in);      // the seed paper's gear case
 Scene build_tension_strip(const SceneInput& in);    // stability study: tensile instability
 Scene build_plate_with_hole(const SceneInput& in);  // validation.md section 10: Kirsch
 Scene build_thick_cylinder(const SceneInput& in);   // validation.md section 10: Lame

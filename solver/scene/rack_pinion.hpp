@@ -1,5 +1,5 @@
 #pragma once
-// The rack-and-pinion scene (method.md, "The paper's gear case"): what the
+// The rack-and-pinion scene (method.md, "The seed paper's gear case"): what the
 // builder decided, shared with its history columns and the analysis of the
 // finished run.
 #include <limits>
