@@ -74,13 +74,7 @@ Sums run_passes(std::span<const Pass<Sums>> passes, int threads, const bool& sto
     Sums sums{};
   };
   const int team_size = threads > 1 ? threads : 1;
-  // The calling thread's buffer, kept between steps: no allocation a step
-  // (a worker thread running another job has its own).
-  // Named through a reference: inside the region `buffer` would name each
-  // team thread's own.
-  static thread_local std::vector<Slot> buffer;
-  std::vector<Slot>& slots = buffer;
-  slots.assign(team_size, Slot{});
+  std::vector<Slot> slots(team_size);
   std::exception_ptr failed;
   bool failing = false;
   auto run = [&](int me, int team) {
