@@ -16,6 +16,8 @@
 // order at the end, so the totals do not depend on timing.
 #include <omp.h>
 
+#include <atomic>
+#include <climits>
 #include <cstddef>
 #include <exception>
 #include <span>
@@ -65,27 +67,29 @@ struct Pass {
 
 // Runs `passes` in order on `threads` threads: one thread runs them without
 // a parallel region (libgomp wakes a team of one through the kernel at each
-// barrier, ~7 % of a small step). Once `stop` reads true after a barrier, or
+// barrier, ~7 % of a small step). Once `stop` (final before the barrier) reads nonzero, or
 // a pass has thrown, the rest are skipped on every thread alike; the first
 // exception is rethrown after the region.
 template <class Sums>
-Sums run_passes(std::span<const Pass<Sums>> passes, int threads, const bool& stop) {
+Sums run_passes(std::span<const Pass<Sums>> passes, int threads, const std::size_t& stop) {
   struct alignas(kCacheLine) Slot {
     Sums sums{};
   };
   const int team_size = threads > 1 ? threads : 1;
   std::vector<Slot> slots(team_size);
   std::exception_ptr failed;
-  bool failing = false;
+  // The first pass that threw. A flag would race: a fast thread could set
+  // it in pass k while a slow one still reads it before pass k.
+  std::atomic<int> failed_pass{INT_MAX};
   auto run = [&](int me, int team) {
     Sums& mine = slots[me].sums;
     for (std::size_t k = 0; k < passes.size(); ++k) {
       if (k > 0) {
 #pragma omp barrier
       }
-      // Every thread reads the same flags here: they were set before the
-      // barrier.
-      if (stop || failing) break;
+      // Every thread reads the same here: `stop` must be final before the
+      // barrier, and a failure counts from the pass after it.
+      if (stop > 0 || failed_pass.load() < static_cast<int>(k)) break;
       const Pass<Sums>& pass = passes[k];
       try {
         switch (pass.runs) {
@@ -103,7 +107,7 @@ Sums run_passes(std::span<const Pass<Sums>> passes, int threads, const bool& sto
 #pragma omp critical(gearsph_pass_failure)
         {
           if (!failed) failed = std::current_exception();
-          failing = true;
+          if (static_cast<int>(k) < failed_pass.load()) failed_pass.store(static_cast<int>(k));
         }
       }
     }

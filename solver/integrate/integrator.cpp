@@ -140,7 +140,6 @@ RegionStep total_lagrangian_step(Simulation& sim, double dt) {
   place_rotations(sim, dt);
   double ramp = 0.0;
   Drift drift;
-  bool stop = false;
 
   // v^{n+1/2}, x^{n+1}, u = x - X.
   auto kick_and_drift = [&](int c, StepSums&) {
@@ -157,8 +156,7 @@ RegionStep total_lagrangian_step(Simulation& sim, double dt) {
     sim.time += dt;
     ++sim.step;
     ramp = physics::load_ramp(sim);
-    stop = drift.outside > 0;
-    if (!stop) refresh_neighbours(sim, drift.contacts_moved > 0);
+    refresh_neighbours(sim, drift.contacts_moved > 0);
   };
   // F - I from the displacements; then F, P, sigma, rho and the turned
   // contact normals per particle.
@@ -188,8 +186,14 @@ RegionStep total_lagrangian_step(Simulation& sim, double dt) {
       {"contact and momentum sums", Runs::OnEveryThread, nullptr, contact_and_momentum},
       {"accelerations and closing kick", Runs::OverChunks, &tl.momentum, accelerations_and_kick},
   };
-  const StepSums sums = run_passes<StepSums>(step, tl.momentum.chunks(), stop);
-  if (drift.outside > 0) return {drift, sums.power};
+  // A particle outside the domain (final after the drift's barrier) stops
+  // the list before the clock; the clock still counts the step.
+  const StepSums sums = run_passes<StepSums>(step, tl.momentum.chunks(), drift.outside);
+  if (drift.outside > 0) {
+    sim.time += dt;
+    ++sim.step;
+    return {drift, sums.power};
+  }
   sim.energy.dissipated += dt * sums.viscous;  // the same order as separate calls
   sim.energy.dissipated += sums.damped;
   if (contact) physics::record_contact(sim, sums.touched);

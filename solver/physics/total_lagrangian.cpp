@@ -23,7 +23,7 @@ namespace {
 constexpr int kDeformationSpill = 4;
 constexpr int kMomentumSpill = 6;
 
-constexpr bool kNeverStop = false;
+constexpr std::size_t kNeverStop = 0;
 
 // What a row costs besides its pairs, in pairs of its own pass, and what an
 // approaching pair costs (the viscosity's division and square root) on top
