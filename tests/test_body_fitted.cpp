@@ -147,6 +147,27 @@ TEST(BodyFitted, GradedPlateFollowsItsSpacingFieldAndIsTheSameEveryTime) {
   }
 }
 
+TEST(BodyFitted, AStraightEdgeFollowsASpacingGradedAlongIt) {
+  // One long straight edge refined at one point in its middle (a rack flank
+  // at a resolved contact): the outline row is fine there and coarse at the
+  // ends, not the point's spacing all along the edge.
+  const Polygon strip = rectangle(-0.01, -0.002, 0.01, 0.0);
+  SpacingField field(1e-3, 0.12);
+  field.add_feature({{0.0, 0.0}}, 0.05e-3);
+  const BodyFittedParticles p = fill_body_fitted(make_region(strip), field);
+  std::vector<double> top;
+  for (std::size_t i = 0; i < p.points.size(); ++i) {
+    if (p.outline[i] && std::abs(p.points[i].y) < 1e-12) top.push_back(p.points[i].x);
+  }
+  std::sort(top.begin(), top.end());
+  ASSERT_GT(top.size(), 10u);
+  for (std::size_t k = 1; k < top.size(); ++k) {
+    const double gap = top[k] - top[k - 1];
+    const double expected = field({0.5 * (top[k] + top[k - 1]), 0.0});
+    EXPECT_NEAR(gap / expected, 1.0, 0.15) << "between x = " << top[k - 1] << " and " << top[k];
+  }
+}
+
 TEST(BodyFitted, VoronoiCellsOfALatticeAreItsSquares) {
   // Interior lattice points of a square: every cell dx^2, edge ones clipped.
   const double dx = 1e-3;

@@ -361,3 +361,54 @@ TEST(Contact, SurfaceListOfSurfaceParticlesGivesTheFullListsForces) {
 
 }  // namespace
 }  // namespace gearsph
+
+namespace gearsph {
+namespace {
+
+// A static check whose contact the particles resolve (scene
+// resolve_contact): both flanks carry particles of an eighth of the Hertz
+// half-width across the contact, graded back to the flanks' spacing away
+// from it, and the contact load sits on single pairs. The pressure they
+// give is the validation case gear_static/resolved_contact_pressure.
+TEST(ResolvedContact, BothFlanksAreAnEighthOfTheHalfWidthAcrossTheContact) {
+  const nlohmann::json job = {{"scene",
+                               {{"type", "rack_pinion"},
+                                {"quasi_static", true},
+                                {"resolve_contact", true},
+                                {"pinion", {{"omega_rad_s", 0.0}}},
+                                {"rack", {{"velocity_m_s", 0.0}, {"load_N", 20000.0}}}}}};
+  const PreparedJob prepared = prepare_job(job, 1);
+  const nlohmann::json& rc = prepared.scene.description.at("resolved_contact");
+  const double a = rc.at("hertz_half_width_estimate_m").get<double>();
+  const double s = rc.at("contact_spacing_m").get<double>();
+  EXPECT_DOUBLE_EQ(a / s, 8.0);
+  // a = sqrt(4 F' R / (pi E*)) at the pitch point: F' = 20 kN / cos 20 deg
+  // over 20 mm, R = sqrt(24^2 - 22.553^2) mm, E* = E / (2 (1 - nu^2)).
+  const double r_curv = std::sqrt(0.024 * 0.024 - 0.0225526 * 0.0225526);
+  const double e_star = 1.73e11 / (2.0 * (1.0 - 0.09));
+  const double line_load = 20000.0 / std::cos(20.0 * std::numbers::pi / 180.0) / 0.02;
+  EXPECT_NEAR(a, std::sqrt(4.0 * line_load * r_curv / (std::numbers::pi * e_star)), 1e-3 * a);
+  EXPECT_EQ(prepared.scene.contact_smoothing_spacings, 0.0);
+
+  const Simulation& sim = prepared.scene.sim;
+  const Particles& p = sim.particles;
+  const double cx = rc.at("point_m")[0].get<double>(), cy = rc.at("point_m")[1].get<double>();
+  for (std::size_t b = 0; b < 2; ++b) {
+    int across = 0;
+    double far_spacing = 0.0;
+    for (std::size_t i = sim.bodies[b].begin; i < sim.bodies[b].end; ++i) {
+      const double d = std::hypot(p.x0[i] - cx, p.y0[i] - cy);
+      if (d < a && std::isfinite(p.surf_depth[i])) {  // the flank's outline row
+        ++across;
+        EXPECT_LT(p.spacing[i], 1.1 * s) << sim.bodies[b].name << " particle " << i;
+      }
+      if (d > 3e-3 && d < 3.5e-3) far_spacing = std::max(far_spacing, p.spacing[i]);
+    }
+    // 2a of outline at a/8: 16 particles.
+    EXPECT_GE(across, 15) << sim.bodies[b].name;
+    EXPECT_GT(far_spacing, 5.0 * s) << sim.bodies[b].name << ": graded, not fine all over";
+  }
+}
+
+}  // namespace
+}  // namespace gearsph

@@ -193,6 +193,30 @@ TEST(Jobs, SceneLimitsAreExplained) {
   EXPECT_TRUE(has_issue(issues, "/scene/clamp_length_m", "kernel support")) << describe(issues);
 }
 
+TEST(Jobs, AResolvedContactIsAskedOnlyWhereItApplies) {
+  const json held = {{"type", "rack_pinion"},
+                     {"quasi_static", true},
+                     {"resolve_contact", true},
+                     {"pinion", {{"omega_rad_s", 0.0}}},
+                     {"rack", {{"velocity_m_s", 0.0}, {"load_N", 1000.0}}}};
+  json dynamic = {{"scene", held}};
+  dynamic["scene"]["quasi_static"] = false;
+  auto issues = issues_of(dynamic);
+  EXPECT_TRUE(has_issue(issues, "/scene/resolve_contact", "quasi_static")) << describe(issues);
+
+  const json lattice = {
+      {"scene", held},
+      {"discretization", {{"particles", "lattice"}, {"contact_spacing_mm", 0.02}}}};
+  issues = issues_of(lattice);
+  EXPECT_TRUE(has_issue(issues, "/discretization/contact_spacing_mm", "body_fitted"))
+      << describe(issues);
+
+  const json coarse = {{"scene", held}, {"discretization", {{"contact_spacing_mm", 0.5}}}};
+  issues = issues_of(coarse);
+  EXPECT_TRUE(has_issue(issues, "/discretization/contact_spacing_m", "fine spacing"))
+      << describe(issues);
+}
+
 TEST(Jobs, FixedTimeStepAboveTheLimitIsRefusedWithTheLimit) {
   json job = kPlate;
   job["time"]["dt_s"] = 1e-3;

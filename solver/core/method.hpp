@@ -24,6 +24,9 @@ struct Discretization {
   ParticleLayout layout = ParticleLayout::SceneDefault;
   double fine_dx = 0.0;  // body-fitted: spacing at the stress raisers [m] (0: the scene's default)
   double grading = 0.0;  // body-fitted: growth of the spacing per unit distance (0: default)
+  // body-fitted static gear checks: spacing at tooth 0's contact, to
+  // resolve its Hertz pressure [m] (0: the scene's choice)
+  double contact_dx = 0.0;
   double h() const { return h_over_dx * dx; }
 };
 

@@ -27,10 +27,32 @@ std::vector<std::size_t> corners(const Polygon& ring, double angle) {
   return out;
 }
 
-// Points along the open polyline `line` at equal steps of tau = int dl / s,
+// The polyline with its long edges cut into pieces of at most a quarter of
+// the smallest spacing at their ends and middle, so that a spacing graded
+// along one straight edge (a rack flank refined at one point) is followed:
+// over such a piece a g-Lipschitz spacing changes by g/4 at most.
+std::vector<Point> split_for_spacing(const std::vector<Point>& line, const SpacingField& s) {
+  std::vector<Point> out;
+  if (line.empty()) return out;
+  out.push_back(line.front());
+  for (std::size_t k = 1; k < line.size(); ++k) {
+    const Point a = line[k - 1], b = line[k];
+    const double least = std::min({s(a), s(0.5 * (a + b)), s(b)});
+    const auto pieces =
+        std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(norm(b - a) / (0.25 * least))));
+    for (std::size_t m = 1; m < pieces; ++m) {
+      out.push_back(a + (static_cast<double>(m) / static_cast<double>(pieces)) * (b - a));
+    }
+    out.push_back(b);
+  }
+  return out;
+}
+
+// Points along the open polyline `given` at equal steps of tau = int dl / s,
 // its first point included and its last excluded; at least `min_points`.
-void sample_piece(const std::vector<Point>& line, const SpacingField& s, std::size_t min_points,
+void sample_piece(const std::vector<Point>& given, const SpacingField& s, std::size_t min_points,
                   std::vector<Point>& out) {
+  const std::vector<Point> line = split_for_spacing(given, s);
   std::vector<double> tau(line.size(), 0.0);
   for (std::size_t k = 1; k < line.size(); ++k) {
     const double len = norm(line[k] - line[k - 1]);

@@ -65,6 +65,19 @@ Discretization read_discretization(const nlohmann::json& d) {
                 : d.contains("fine_spacing_mm") ? 1e-3 * d.at("fine_spacing_mm").get<double>()
                                                 : 0.0;
   if (d.contains("grading")) out.grading = d.at("grading").get<double>();
+  if (d.contains("contact_spacing_m") && d.contains("contact_spacing_mm")) {
+    refuse("/discretization/contact_spacing_mm",
+           "give the contact spacing once: contact_spacing_m or contact_spacing_mm, not both");
+  }
+  out.contact_dx = d.contains("contact_spacing_m") ? d.at("contact_spacing_m").get<double>()
+                   : d.contains("contact_spacing_mm")
+                       ? 1e-3 * d.at("contact_spacing_mm").get<double>()
+                       : 0.0;
+  if (out.layout == ParticleLayout::Lattice && out.contact_dx > 0.0) {
+    refuse(d.contains("contact_spacing_m") ? "/discretization/contact_spacing_m"
+                                           : "/discretization/contact_spacing_mm",
+           "a lattice has one spacing: a contact spacing needs \"particles\": \"body_fitted\"");
+  }
   if (out.layout == ParticleLayout::Lattice && (out.fine_dx > 0.0 || d.contains("grading"))) {
     refuse(d.contains("grading")          ? "/discretization/grading"
            : d.contains("fine_spacing_m") ? "/discretization/fine_spacing_m"

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "solver/diagnostics/hertz_fit.hpp"
 #include "solver/physics/contact.hpp"
 #include "solver/scene/builders.hpp"
 #include "solver/scene/lattice.hpp"
@@ -23,37 +24,6 @@
 namespace gearsph::scenes {
 
 namespace {
-
-struct EllipseFit {
-  double p0 = 0.0, a = 0.0, rms = 0.0;
-};
-
-// Least-squares fit of p(x) = p0 sqrt(1 - (x - xc)^2 / a^2) over a scan of a:
-// for fixed a the best p0 is linear; xc = 0 by symmetry.
-EllipseFit fit_hertz(const std::vector<double>& x, const std::vector<double>& p, double a_guess) {
-  EllipseFit best;
-  double best_err = 1e300;
-  for (double a = 0.3 * a_guess; a <= 3.0 * a_guess; a += 0.001 * a_guess) {
-    double sgp = 0.0, sgg = 0.0;
-    for (std::size_t k = 0; k < x.size(); ++k) {
-      const double g = std::abs(x[k]) < a ? std::sqrt(1.0 - x[k] * x[k] / (a * a)) : 0.0;
-      sgp += g * p[k];
-      sgg += g * g;
-    }
-    if (sgg <= 0.0) continue;
-    const double p0 = sgp / sgg;
-    double err = 0.0;
-    for (std::size_t k = 0; k < x.size(); ++k) {
-      const double g = std::abs(x[k]) < a ? std::sqrt(1.0 - x[k] * x[k] / (a * a)) : 0.0;
-      err += (p[k] - p0 * g) * (p[k] - p0 * g);
-    }
-    if (err < best_err) {
-      best_err = err;
-      best = {p0, a, std::sqrt(err / static_cast<double>(x.size()))};
-    }
-  }
-  return best;
-}
 
 // A row of particles along x (an outline row): sorted by x, and the stretch
 // of [lo, hi] each stands for, halfway to its neighbours.
@@ -289,7 +259,7 @@ nlohmann::json analyse_hertz(const PressureReadout& r, const HertzReference& ref
     ps[col] += f / r.widths[col];  // pressure over the column's (or particle's) width
     total += f;
   }
-  const EllipseFit fit = fit_hertz(r.xs, ps, ref.a);
+  const diagnostics::HertzEllipseFit fit = diagnostics::fit_hertz_ellipse(r.xs, ps, ref.a);
   double peak = 0.0;
   for (double v : ps) peak = std::max(peak, v);
   a["reference"] = "Hertz line contact: a = sqrt(4 P' R / (pi E*)), p0 = 2 P' / (pi a)";

@@ -383,8 +383,68 @@ Point load_on_tooth(const GearLayout& L, int k) {
   return geometry::rotate({clockwise(L) ? 1.0 : -1.0, 0.0}, k * pitch_angle(L));
 }
 
+// A static check's contact resolved by the particles (docs/gears.md, "The
+// contact pressure, resolved"): both flanks refined over tooth 0's contact
+// to an eighth of the Hertz half-width the load gives there (Johnson 1985,
+// eq. 4.43: a = sqrt(4 F' R / (pi E*)), R the involute's radius of
+// curvature, the rack flank straight), or to the job's contact spacing.
+// The pressure read from the particles converges from below like the
+// spacing: -12, -9 and -7 % at a/4, a/6 and a/8 (docs/gears.md).
+void choose_resolved_contact(const nlohmann::json& s, const Discretization& job, GearLayout& L,
+                             const geometry::PinionGeometry& pinion,
+                             const geometry::MeshPlacement& place, const GearSpacings& sp) {
+  const bool by_spacing = job.contact_dx > 0.0;
+  if (!s.at("resolve_contact").get<bool>() && !by_spacing) return;
+  const char* where = by_spacing ? "/discretization/contact_spacing_m" : "/scene/resolve_contact";
+  if (!L.quasi_static || L.load_N <= 0.0) {
+    throw JobError(where,
+                   "resolves a static check's contact: it needs \"quasi_static\": true and a "
+                   "rack load");
+  }
+  if (!sp.fitted) throw JobError(where, "needs body-fitted particles (a lattice has one spacing)");
+  const double r = L.load_radius, rb = L.base_radius;
+  const double line_load = L.load_N / std::cos(L.pressure_angle) / L.face_width_m;
+  const double a =
+      std::sqrt(4.0 * line_load * std::sqrt(r * r - rb * rb) / (kPi * L.contact_modulus));
+  L.resolved.half_width = a;
+  L.resolved.spacing = by_spacing ? job.contact_dx : a / 8.0;
+  if (L.resolved.spacing > sp.fine) {
+    throw JobError(where, "the contact spacing (" + std::to_string(L.resolved.spacing) +
+                              " m) must not exceed the fine spacing (" + std::to_string(sp.fine) +
+                              " m)");
+  }
+  // The point: tooth 0's loaded flank where it crosses the load radius.
+  const std::vector<Point> flank = gear::loaded_flank(pinion, 0, place.pinion, load_on_tooth(L, 0));
+  for (std::size_t k = 0; k + 1 < flank.size(); ++k) {
+    const double ra = std::hypot(flank[k].x - L.cx, flank[k].y - L.cy);
+    const double rb_ = std::hypot(flank[k + 1].x - L.cx, flank[k + 1].y - L.cy);
+    if ((ra - r) * (rb_ - r) > 0.0 || ra == rb_) continue;
+    const double t = (r - ra) / (rb_ - ra);
+    const Point edge = flank[k + 1] - flank[k];
+    L.resolved.x = flank[k].x + t * edge.x;
+    L.resolved.y = flank[k].y + t * edge.y;
+    L.resolved.tx = edge.x / geometry::norm(edge);
+    L.resolved.ty = edge.y / geometry::norm(edge);
+    return;
+  }
+  throw JobError(where, "the contact radius is not on tooth 0's modelled flank");
+}
+
+// A resolved contact's spacing on the flank over 1.5 half-widths each side
+// of the point (the contact's centre moves a little under load): uniform
+// across the contact, as the hertz scene's is, since a spacing graded from
+// one point would be 1.7 times coarser at the contact's edges.
+void add_resolved_contact(geometry::SpacingField& field, const GearLayout& L) {
+  const GearLayout::ResolvedContact& c = L.resolved;
+  if (c.spacing <= 0.0) return;
+  const double reach = 1.5 * c.half_width;
+  field.add_feature(
+      {{c.x - reach * c.tx, c.y - reach * c.ty}, {c.x + reach * c.tx, c.y + reach * c.ty}},
+      c.spacing);
+}
+
 // Body-fitted pinion: fine at every modelled tooth's two fillets and its
-// driving flank.
+// driving flank, finest at a resolved contact.
 geometry::SpacingField pinion_spacing(const GearLayout& L, const geometry::PinionGeometry& pinion,
                                       const geometry::MeshPlacement& place,
                                       const GearSpacings& sp) {
@@ -396,6 +456,7 @@ geometry::SpacingField pinion_spacing(const GearLayout& L, const geometry::Pinio
     field.add_feature(f.compression.points, sp.fine);
     field.add_feature(gear::loaded_flank(pinion, k, place.pinion, load_on_tooth(L, k)), sp.flank);
   }
+  add_resolved_contact(field, L);
   return field;
 }
 
@@ -445,6 +506,7 @@ geometry::SpacingField rack_spacing(const GearLayout& L, const geometry::Polygon
       run.clear();
     }
   }
+  add_resolved_contact(field, L);
   return field;
 }
 
@@ -686,6 +748,9 @@ Scene build_rack_pinion(const SceneInput& in) {
       read_material(s.contains("pinion_material") ? s.at("pinion_material") : s.at("material"));
   const Material mat_r =
       read_material(s.contains("rack_material") ? s.at("rack_material") : s.at("material"));
+  L.contact_modulus =
+      1.0 / ((1.0 - mat_p.nu * mat_p.nu) / mat_p.E + (1.0 - mat_r.nu * mat_r.nu) / mat_r.E);
+  choose_resolved_contact(s, in.discretization, L, pinion, place, sp);
   const double back_y = place.rack.apply({0.0, rack.back_y()}).y;
   add_gear_motions(sim, L);
   fill_pinion(sim, L, pinion, place, outlines, sp, teeth.whole_pinion, mat_p);
@@ -704,8 +769,6 @@ Scene build_rack_pinion(const SceneInput& in) {
     if (tooth_of[i] == 0) L.tooth0_particles.push_back(i);
   }
   L.roots = monitor_roots(sim, L, pinion, place, sp.fine);
-  L.contact_modulus =
-      1.0 / ((1.0 - mat_p.nu * mat_p.nu) / mat_p.E + (1.0 - mat_r.nu * mat_r.nu) / mat_r.E);
   add_gear_histories(scene, L, tooth_of, choose_probes(sim, L, pinion, turned, back_y, sp.dx));
 
   scene.outlines.push_back(polygon_outline("pinion", 0, outlines.pinion));
@@ -718,6 +781,16 @@ Scene build_rack_pinion(const SceneInput& in) {
   scene.description["pinion"] =
       describe_pinion(sim, pj, L, pinion, outlines.r_drive, pinion_inertia);
   scene.description["rack"] = describe_rack(sim, rack);
+  if (L.resolved.spacing > 0.0) {
+    // The particles carry the contact: its force on single pairs, as in the
+    // hertz scene, not spread over the surface.
+    scene.contact_smoothing_spacings = 0.0;
+    scene.description["resolved_contact"] = {
+        {"point_m", {L.resolved.x, L.resolved.y}},
+        {"contact_spacing_m", L.resolved.spacing},
+        {"hertz_half_width_estimate_m", L.resolved.half_width},
+        {"particles_across_half_width", L.resolved.half_width / L.resolved.spacing}};
+  }
 
   scene.analyse = [L](const History& h, const Simulation& s2) {
     return analyse_rack_pinion(L, h, s2);

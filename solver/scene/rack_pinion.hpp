@@ -49,6 +49,13 @@ struct GearLayout {
   // "tip" or "radius") and the radius on the pinion [m].
   std::string contact_point;
   double load_radius = 0.0;
+  // A resolved static contact (scene.resolve_contact): the point where tooth
+  // 0 meets the rack, the flank's tangent there, the particles' spacing
+  // over the contact, and the Hertz half-width they resolve, estimated from
+  // the load [m]; spacing 0: not resolved.
+  struct ResolvedContact {
+    double x = 0.0, y = 0.0, tx = 0.0, ty = 0.0, spacing = 0.0, half_width = 0.0;
+  } resolved;
   // Particles: body-fitted (graded from fine_spacing at the fillets and
   // active flanks to spacing) or a lattice of spacing.
   bool fitted = false;

@@ -5,8 +5,10 @@
 // ratio.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "solver/core/simulation.hpp"
+#include "solver/diagnostics/hertz_fit.hpp"
 #include "solver/scene/rack_pinion.hpp"
 
 namespace gearsph::scenes {
@@ -351,6 +353,86 @@ void add_static_contact_pressure(nlohmann::json& sc, const GearLayout& L, const 
       "pitch point";
 }
 
+// The pressure on the rack's flank around a resolved contact
+// (scene.resolve_contact), from its outline particles within four
+// half-widths of tooth 0's contact: each one's contact force along the
+// flank's normal over its share of the flank, halfway to its neighbours.
+struct FlankPressure {
+  std::vector<double> s, p;  // position along the flank [m], pressure [Pa]
+  double load = 0.0;         // the row's force per unit face width [N/m]
+  double centre = 0.0;       // the force's centroid [m]
+  double peak = 0.0;         // the largest single-particle pressure [Pa]
+};
+FlankPressure resolved_flank_pressure(const GearLayout& L, const Simulation& final_state) {
+  const Particles& q = final_state.particles;
+  const Body& rack = final_state.bodies[1];
+  const GearLayout::ResolvedContact& c = L.resolved;
+  const double window = std::max(4.0 * c.half_width, 12.0 * c.spacing);
+  // The flank's outward normal where it is loaded (reference: the rack's
+  // displacement is microns) and the tangent along which s runs.
+  const double nx = c.ty, ny = -c.tx;
+  std::vector<std::pair<double, double>> row;  // (s, force)
+  double outward = 0.0;
+  for (std::size_t i = rack.begin; i < rack.end; ++i) {
+    if (!std::isfinite(q.surf_depth[i])) continue;
+    const double dx = q.x0[i] - c.x, dy = q.y0[i] - c.y;
+    const double s = dx * c.tx + dy * c.ty;
+    if (std::abs(s) > window || std::abs(dx * nx + dy * ny) > c.spacing) continue;
+    outward += q.surf_nx[i] * nx + q.surf_ny[i] * ny;
+    row.push_back({s, q.mass[i] * (q.contact_ax[i] * nx + q.contact_ay[i] * ny)});
+  }
+  FlankPressure out;
+  if (row.size() < 3) return out;
+  // A contact force pushes into the body, against its outward normal.
+  const double into = outward > 0.0 ? -1.0 : 1.0;
+  std::sort(row.begin(), row.end());
+  double moment = 0.0;
+  for (std::size_t k = 0; k < row.size(); ++k) {
+    const double left = k > 0 ? row[k].first - row[k - 1].first : row[k + 1].first - row[k].first;
+    const double right = k + 1 < row.size() ? row[k + 1].first - row[k].first : left;
+    const double force = into * row[k].second;
+    out.s.push_back(row[k].first);
+    out.p.push_back(force / (0.5 * (left + right)));
+    out.load += force;
+    moment += force * row[k].first;
+    out.peak = std::max(out.peak, out.p.back());
+  }
+  out.centre = out.load > 0.0 ? moment / out.load : 0.0;
+  return out;
+}
+
+// A resolved static contact: the flank's pressure fitted with the Hertz
+// ellipse about its centroid, against the Hertz sub-model on the same tooth
+// force (hertz_peak_pressure_Pa) and that ellipse's half-width 2 F' / (pi p0).
+void add_resolved_contact_pressure(nlohmann::json& sc, const GearLayout& L,
+                                   const Simulation& final_state) {
+  const FlankPressure f = resolved_flank_pressure(L, final_state);
+  if (f.s.empty()) return;
+  const diagnostics::HertzEllipseFit fit =
+      diagnostics::fit_hertz_ellipse(f.s, f.p, L.resolved.half_width, f.centre);
+  const double hertz = sc.at("hertz_peak_pressure_Pa").get<double>();
+  const double line_load = sc.at("tooth0_force_N").get<double>() / L.face_width_m;
+  const double a_hertz = hertz > 0.0 ? 2.0 * line_load / (std::numbers::pi * hertz) : 0.0;
+  nlohmann::json profile = nlohmann::json::array();
+  for (std::size_t k = 0; k < f.s.size(); ++k) {
+    if (f.p[k] > 0.0) profile.push_back({f.s[k] - f.centre, f.p[k]});
+  }
+  sc["resolved_peak_pressure_Pa"] = fit.p0;
+  sc["resolved_peak_pressure_error_vs_hertz"] = hertz > 0.0 ? fit.p0 / hertz - 1.0 : 0.0;
+  sc["resolved_half_width_m"] = fit.a;
+  sc["resolved_half_width_error_vs_hertz"] = a_hertz > 0.0 ? fit.a / a_hertz - 1.0 : 0.0;
+  sc["resolved_max_particle_pressure_Pa"] = f.peak;
+  sc["resolved_fit_rms_Pa"] = fit.rms;
+  sc["resolved_load_fraction"] = f.load / line_load;
+  sc["resolved_contact_spacing_m"] = L.resolved.spacing;
+  sc["resolved_particles_across_half_width"] = fit.a / L.resolved.spacing;
+  sc["resolved_pressure_profile_s_m_p_Pa"] = profile;
+  sc["resolved_pressure_note"] =
+      "read from the rack's outline particles at tooth 0's contact (their contact forces over "
+      "their shares of the flank), fitted with the Hertz ellipse; hertz_peak_pressure_Pa is "
+      "the sub-model on the same tooth force";
+}
+
 // The largest Hertz contact pressure of any modelled tooth over the run
 // (a sub-model on the resolved tooth force, history contact_pressure_t<k>_Pa).
 struct PeakPressure {
@@ -400,6 +482,7 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
                                 te_mean);
     }
     add_static_contact_pressure(sc, L, h);
+    if (L.resolved.spacing > 0.0) add_resolved_contact_pressure(sc, L, final_state);
     a["static_check"] = sc;
   }
 
