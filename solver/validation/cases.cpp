@@ -276,10 +276,16 @@ std::vector<Case> cases(bool quick) {
   out.push_back({"bar_impact_kernel/sticks", "3", "bars separate after contact (1 yes)",
                  "kernel coupling holds the bars together (adhesion)", 0.0, bar_job(true, quick),
                  outcome("separated", false), Case::Kind::Outcome});
-  out.push_back({"hertz/peak_pressure", "6", "peak pressure p0 [Pa]", "p0 = 2 P' / (pi a)", 0.10,
-                 hertz_job(quick), relative("peak_pressure_Pa", "reference_peak_pressure_Pa")});
+  // Hertz's half-plane needs the full variant's block (12a): there the
+  // lattice at a/6 is within 5 % (-2.1 %, -1.1 %); the quick variant's 6a
+  // block costs about 6 points (docs/contact.md).
+  const double hertz_tolerance = quick ? 0.10 : 0.05;
+  out.push_back({"hertz/peak_pressure", "6", "peak pressure p0 [Pa]", "p0 = 2 P' / (pi a)",
+                 hertz_tolerance, hertz_job(quick),
+                 relative("peak_pressure_Pa", "reference_peak_pressure_Pa")});
   out.push_back({"hertz/half_width", "6", "contact half-width a [m]", "a = sqrt(4 P' R / (pi E*))",
-                 0.10, hertz_job(quick), relative("half_width_m", "reference_half_width_m")});
+                 hertz_tolerance, hertz_job(quick),
+                 relative("half_width_m", "reference_half_width_m")});
   out.push_back({"hertz_graded/peak_pressure", "6", "peak pressure p0 [Pa]", "p0 = 2 P' / (pi a)",
                  0.10, hertz_graded_job(quick),
                  relative("peak_pressure_Pa", "reference_peak_pressure_Pa")});
