@@ -389,7 +389,7 @@ Point load_on_tooth(const GearLayout& L, int k) {
 // eq. 4.43: a = sqrt(4 F' R / (pi E*)), R the involute's radius of
 // curvature, the rack flank straight), or to the job's contact spacing.
 // The pressure read from the particles converges from below like the
-// spacing: -12, -9 and -7 % at a/4, a/6 and a/8 (docs/gears.md).
+// spacing: -12, -11 and -7 % at a/4, a/6 and a/8 at 1 kN (docs/gears.md).
 void choose_resolved_contact(const nlohmann::json& s, const Discretization& job, GearLayout& L,
                              const geometry::PinionGeometry& pinion,
                              const geometry::MeshPlacement& place, const GearSpacings& sp) {
@@ -416,10 +416,10 @@ void choose_resolved_contact(const nlohmann::json& s, const Discretization& job,
   // The point: tooth 0's loaded flank where it crosses the load radius.
   const std::vector<Point> flank = gear::loaded_flank(pinion, 0, place.pinion, load_on_tooth(L, 0));
   for (std::size_t k = 0; k + 1 < flank.size(); ++k) {
-    const double ra = std::hypot(flank[k].x - L.cx, flank[k].y - L.cy);
-    const double rb_ = std::hypot(flank[k + 1].x - L.cx, flank[k + 1].y - L.cy);
-    if ((ra - r) * (rb_ - r) > 0.0 || ra == rb_) continue;
-    const double t = (r - ra) / (rb_ - ra);
+    const double r_here = std::hypot(flank[k].x - L.cx, flank[k].y - L.cy);
+    const double r_next = std::hypot(flank[k + 1].x - L.cx, flank[k + 1].y - L.cy);
+    if ((r_here - r) * (r_next - r) > 0.0 || r_here == r_next) continue;
+    const double t = (r - r_here) / (r_next - r_here);
     const Point edge = flank[k + 1] - flank[k];
     L.resolved.x = flank[k].x + t * edge.x;
     L.resolved.y = flank[k].y + t * edge.y;
