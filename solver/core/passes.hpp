@@ -67,9 +67,13 @@ struct Pass {
 
 // Runs `passes` in order on `threads` threads: one thread runs them without
 // a parallel region (libgomp wakes a team of one through the kernel at each
-// barrier, ~7 % of a small step). Once `stop` (final before the barrier) reads nonzero, or
-// a pass has thrown, the rest are skipped on every thread alike; the first
-// exception is rethrown after the region.
+// barrier, ~7 % of a small step). Once `stop` reads nonzero after a
+// barrier, or a pass has thrown, the rest are skipped on every thread
+// alike; the first exception is rethrown after the region. Only the first
+// pass may write `stop`: every thread reads it after the barrier that ends
+// that pass, never before the first pass, where a slow thread would see
+// what a fast one's first pass already wrote, leave, and leave the fast
+// one waiting at the next barrier for ever.
 template <class Sums>
 Sums run_passes(std::span<const Pass<Sums>> passes, int threads, const std::size_t& stop) {
   struct alignas(kCacheLine) Slot {
@@ -86,10 +90,10 @@ Sums run_passes(std::span<const Pass<Sums>> passes, int threads, const std::size
     for (std::size_t k = 0; k < passes.size(); ++k) {
       if (k > 0) {
 #pragma omp barrier
+        // Every thread reads the same here: `stop` was final before the
+        // barrier, and a failure counts from the pass after it.
+        if (stop > 0 || failed_pass.load() < static_cast<int>(k)) break;
       }
-      // Every thread reads the same here: `stop` must be final before the
-      // barrier, and a failure counts from the pass after it.
-      if (stop > 0 || failed_pass.load() < static_cast<int>(k)) break;
       const Pass<Sums>& pass = passes[k];
       try {
         switch (pass.runs) {
