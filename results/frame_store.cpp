@@ -50,7 +50,10 @@ std::uint64_t FrameStore::chunks_per_frame(std::size_t particles) {
 }
 
 FrameStore::FrameStore(hid_t file, std::size_t particles, std::size_t frames, bool compress)
-    : group_(h5::create_group(file, "frames")), values_(3 * particles), ints_(particles) {
+    : group_(h5::create_group(file, "frames")),
+      compress_(compress),
+      values_(3 * particles),
+      ints_(particles) {
   for (const FieldSpec& f : kFrameFields) {
     fields_.push_back(field_series(group_.get(), f, particles, frames, compress));
   }
@@ -111,10 +114,17 @@ void FrameStore::write_field(std::size_t k, const Particles& p) {
       for (std::size_t i = 0; i < n; ++i) ints_[i] = static_cast<std::int32_t>(i);
       break;
   }
-  if (kFrameFields[k].integer) {
-    fields_[k].append(ints_, 1);
+  const bool integer = kFrameFields[k].integer;
+  if (compress_) {  // through the filters
+    if (integer) {
+      fields_[k].append(ints_, 1);
+    } else {
+      fields_[k].append(values_, 1);
+    }
+  } else if (integer) {
+    fields_[k].append_row_direct(ints_.data(), sizeof(std::int32_t));
   } else {
-    fields_[k].append(values_, 1);
+    fields_[k].append_row_direct(values_.data(), sizeof(double));
   }
 }
 

@@ -37,6 +37,7 @@ class FrameStore {
   void write_field(std::size_t k, const Particles& p);
 
   h5::Id group_;
+  bool compress_ = false;
   std::vector<h5::Series> fields_;  // in kFrameFields order
   h5::Series time_, step_;
   std::vector<double> values_;      // gather buffer, sized once

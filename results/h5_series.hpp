@@ -35,6 +35,12 @@ class Series {
   void append(const std::vector<T>& data, hsize_t count) {
     append(data.data(), native_type<T>(), count);
   }
+  // The same for one row of an uncompressed dataset whose chunks hold one
+  // row each, written chunk by chunk straight to the file (H5Dwrite_chunk):
+  // no selection, no chunk cache, so the flush after it has only the index
+  // entries to write. `data` holds the row in the file's (little-endian)
+  // layout, `element_bytes` per element.
+  void append_row_direct(const void* data, std::size_t element_bytes);
   hsize_t written() const { return written_; }
   hid_t id() const { return set_.get(); }
 
@@ -42,7 +48,9 @@ class Series {
   void grow(hsize_t rows);
 
   Id set_;
-  std::vector<hsize_t> row_;
+  std::vector<hsize_t> row_, chunk_;
+  bool compressed_ = false;
+  std::vector<unsigned char> padded_;  // a last, partial chunk along axis 1
   hsize_t rows_ = 0, written_ = 0;
 };
 

@@ -89,11 +89,14 @@ void XdmfWriter::write() {
   write_file_atomic(path_, xdmf_document(h5_name_, particles_, times_, dataset_frames_));
   last_write_ = Clock::now();
   last_duration_ = last_write_ - start;
+  written_ = true;
 }
 
 void XdmfWriter::write_throttled() {
-  constexpr int kSpacing = 20;  // at most 1 part in 20 of the wall time
-  if (Clock::now() - last_write_ >= kSpacing * last_duration_) write();
+  constexpr int kSpacing = 50;
+  const Clock::duration wait =
+      std::max<Clock::duration>(std::chrono::seconds(1), kSpacing * last_duration_);
+  if (!written_ || Clock::now() - last_write_ >= wait) write();
 }
 
 }  // namespace gearsph::results

@@ -27,10 +27,12 @@ class XdmfWriter {
   std::size_t frames() const { return times_.size(); }
   // Writes the document now.
   void write();
-  // Writes unless the document has grown so large that rewriting it after
-  // every frame would cost more than ~5% of the wall time (thousands of
-  // frames): then it is rewritten every 20 write-durations. The writer calls
-  // write() at the end of the run to catch up.
+  // Writes the first time, then at most once a second and at most one part
+  // in 50 of the wall time (the document grows with the frames: thousands
+  // take milliseconds to write). Rewriting it at every frame cost 5 % of a
+  // short run (docs/speed-accuracy.md, "Outputs"); a viewer of a running
+  // job sees frames at most a second late. The writer calls write() at the
+  // end of the run to catch up.
   void write_throttled();
 
  private:
@@ -40,6 +42,7 @@ class XdmfWriter {
   std::size_t particles_;
   std::size_t dataset_frames_;
   std::vector<double> times_;
+  bool written_ = false;
   Clock::time_point last_write_{};
   Clock::duration last_duration_{};
 };

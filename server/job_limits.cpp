@@ -70,8 +70,12 @@ double output_seconds(double frames, double particles, double history_values) {
 double output_seconds_of(const nlohmann::json& job, std::int64_t particles, std::int64_t steps) {
   const auto output = job.value("output", nlohmann::json::object());
   const double frames_asked = output.is_object() ? output.value("frames", 0.0) : 0.0;
-  const double points = output.is_object() ? output.value("history_points", 0.0) : 0.0;
   const double n = std::max(1.0, double(steps));
+  // The default samples by time (job.hpp): at most one row every few steps.
+  const double points =
+      output.is_object() && output.contains("history_points")
+          ? output.value("history_points", 0.0)
+          : std::min(double(kDefaultHistoryPoints), n / double(kDefaultHistoryMinSteps));
   const double frames = frames_asked > 0 ? std::min(frames_asked, n) + 2 : 0.0;
   const double rows = std::min(points, n) + 2;
   return output_seconds(frames, double(particles), rows * kRunnerColumns);

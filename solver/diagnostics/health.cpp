@@ -45,24 +45,72 @@ void for_each_body_pair(const Simulation& sim, F&& f) {
 
 }  // namespace
 
-Spacing min_spacing(const Simulation& sim) {
+namespace {
+
+// The same-body pairs with their spacing (the pair's own: graded particles;
+// dx on a lattice), and those whose reference distance is about one spacing.
+void find_health_pairs(const Simulation& sim, HealthPairs& h) {
   const Particles& p = sim.particles;
-  Spacing s;
-  // Against the pair's own spacing (graded particles; dx on a lattice).
-  // A pair is closer than the closest so far if r^2 < q2_min dx^2: a
-  // product, and the division only for the (few) pairs that are.
-  double q2_min = 1e300;
-  const double *x = p.x.data(), *y = p.y.data(), *spacing = p.spacing.data();
+  h.i.clear();
+  h.j.clear();
+  h.dx2.clear();
+  h.near.clear();
+  const double *x0 = p.x0.data(), *y0 = p.y0.data(), *spacing = p.spacing.data();
   for_each_body_pair(sim, [&](std::size_t i, std::size_t j) {
-    const double ddx = x[i] - x[j], ddy = y[i] - y[j];
+    const double ddx = x0[i] - x0[j], ddy = y0[i] - y0[j];
     const double dx = 0.5 * (spacing[i] + spacing[j]);
-    const double r2 = ddx * ddx + ddy * ddy, dx2 = dx * dx;
-    if (r2 < q2_min * dx2) {
-      q2_min = r2 / dx2;
-      s.particle = static_cast<long>(i);
+    if (ddx * ddx + ddy * ddy <= 1.5 * 1.5 * dx * dx) {
+      h.near.push_back(static_cast<std::uint32_t>(h.i.size()));
     }
+    h.i.push_back(static_cast<std::uint32_t>(i));
+    h.j.push_back(static_cast<std::uint32_t>(j));
+    h.dx2.push_back(dx * dx);
   });
-  if (s.particle >= 0) s.over_dx = std::sqrt(q2_min);
+  h.count.assign(p.n, 0.0);
+  for (const std::uint32_t k : h.near) {
+    h.count[h.i[k]] += 1.0;
+    h.count[h.j[k]] += 1.0;
+  }
+  h.particles = p.n;
+  h.fixed = sim.reference.built();
+}
+
+void refresh(const Simulation& sim, HealthPairs& h) {
+  if (!h.fixed || h.particles != sim.particles.n) find_health_pairs(sim, h);
+}
+
+}  // namespace
+
+Spacing min_spacing(const Simulation& sim) {
+  HealthPairs pairs;
+  return min_spacing(sim, pairs);
+}
+
+Spacing min_spacing(const Simulation& sim, HealthPairs& h) {
+  refresh(sim, h);
+  const Particles& p = sim.particles;
+  const double *x = p.x.data(), *y = p.y.data(), *dx2 = h.dx2.data();
+  const std::uint32_t *pi = h.i.data(), *pj = h.j.data();
+  const std::size_t pairs = h.i.size();
+  // The closest pair over its own spacing as one vector loop, then the
+  // first pair at that distance for its particle.
+  h.q2.resize(pairs);
+  double* const q2 = h.q2.data();
+  double q2_min = 1e300;
+#pragma omp simd reduction(min : q2_min)
+  for (std::size_t k = 0; k < pairs; ++k) {
+    const double ddx = x[pi[k]] - x[pj[k]], ddy = y[pi[k]] - y[pj[k]];
+    q2[k] = (ddx * ddx + ddy * ddy) / dx2[k];
+    q2_min = std::min(q2_min, q2[k]);
+  }
+  Spacing s;
+  for (std::size_t k = 0; k < pairs; ++k) {
+    if (q2[k] == q2_min) {
+      s.particle = static_cast<long>(pi[k]);
+      s.over_dx = std::sqrt(q2_min);
+      break;
+    }
+  }
   return s;
 }
 
@@ -90,37 +138,40 @@ double penetration_over_dx(const Simulation& sim) {
 }
 
 double zigzag_indicator(const Simulation& sim) {
+  HealthPairs pairs;
+  return zigzag_indicator(sim, pairs);
+}
+
+double zigzag_indicator(const Simulation& sim, HealthPairs& h) {
+  refresh(sim, h);
   const Particles& p = sim.particles;
   // The in-plane stress tensor, component by component: signed fields stay
   // smooth through a neutral axis, where von Mises has a kink.
   constexpr int kComponents = 3;
-  std::vector<double> s(kComponents * p.n), sum(kComponents * p.n, 0.0), count(p.n, 0.0);
+  h.s.resize(kComponents * p.n);
+  h.sum.assign(kComponents * p.n, 0.0);
+  double* const s = h.s.data();
+  double* const sum = h.sum.data();
   for (std::size_t i = 0; i < p.n; ++i) {
     s[kComponents * i + 0] = p.sigma_xx(i);
     s[kComponents * i + 1] = p.sigma_yy(i);
     s[kComponents * i + 2] = p.sigma_xy(i);
   }
-  // Nearest neighbours: reference distance about one spacing (the pair's
-  // own: graded particles; dx on a lattice).
-  const double *x0 = p.x0.data(), *y0 = p.y0.data(), *spacing = p.spacing.data();
-  for_each_body_pair(sim, [&](std::size_t i, std::size_t j) {
-    const double ddx = x0[i] - x0[j], ddy = y0[i] - y0[j];
-    const double dx = 0.5 * (spacing[i] + spacing[j]);
-    if (ddx * ddx + ddy * ddy > 1.5 * 1.5 * dx * dx) return;
+  // Nearest neighbours only (HealthPairs::near).
+  for (const std::uint32_t k : h.near) {
+    const std::size_t i = h.i[k], j = h.j[k];
     for (int c = 0; c < kComponents; ++c) {
       sum[kComponents * i + c] += s[kComponents * j + c];
       sum[kComponents * j + c] += s[kComponents * i + c];
     }
-    count[i] += 1.0;
-    count[j] += 1.0;
-  });
+  }
   double num = 0.0, den = 0.0;
   for (std::size_t i = 0; i < p.n; ++i) {
-    if (count[i] < 1.0) continue;
+    if (h.count[i] < 1.0) continue;
     for (int c = 0; c < kComponents; ++c) {
       const double v = s[kComponents * i + c];
-      const double z = v - sum[kComponents * i + c] / count[i];
-      num += z * z;
+      const double d = v - sum[kComponents * i + c] / h.count[i];
+      num += d * d;
       den += v * v;
     }
   }
@@ -175,11 +226,11 @@ void HealthMonitor::check(const Simulation& sim, const EnergyState& e, bool full
   measures_.energy_growth = std::max(measures_.energy_growth, growth);
 
   // The pair loops (spacing, zig-zag) only on a full check.
-  const Spacing sp = full ? min_spacing(sim) : Spacing{};
+  const Spacing sp = full ? min_spacing(sim, pairs_) : Spacing{};
   if (full) measures_.min_spacing_over_dx = std::min(measures_.min_spacing_over_dx, sp.over_dx);
   const double pen = penetration_over_dx(sim);
   measures_.max_penetration_over_dx = std::max(measures_.max_penetration_over_dx, pen);
-  const double zz = full ? zigzag_indicator(sim) : 0.0;
+  const double zz = full ? zigzag_indicator(sim, pairs_) : 0.0;
   if (full) {
     measures_.zigzag = std::max(measures_.zigzag, zz);
     measures_.zigzag_final = zz;

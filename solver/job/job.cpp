@@ -289,14 +289,24 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads, int max_threads)
     refuse("/time/end_s", "asks for " + std::to_string(out.steps) + " time steps; at most " +
                               std::to_string(kMaxSteps) + " are allowed");
   }
-  const auto points = job.at("output").at("history_points").get<std::int64_t>();
   // Rounded up, so that a run records at most the samples and frames asked
   // for (plus the initial state): 1.9x as many steps as points would
   // otherwise sample every step, 1.9x the rows.
   auto every = [&](std::int64_t wanted) {
     return std::max<std::int64_t>(1, (out.steps + wanted - 1) / wanted);
   };
-  out.history_every = every(points);
+  const nlohmann::json& output = job.at("output");
+  if (output.contains("history_points")) {
+    out.history_every = every(output.at("history_points").get<std::int64_t>());
+  } else if (out.scene.history_every_step) {
+    out.history_every = every(kDefaultHistoryPoints);
+  } else {
+    // By time, not by step: kDefaultHistoryPoints over the run, but not
+    // closer than kDefaultHistoryMinSteps steps, so that a short run does not
+    // spend a sixth of its time on a row every step (docs/speed-accuracy.md,
+    // "Outputs"). The run's own checks keep their cadence (runner.cpp).
+    out.history_every = std::max(every(kDefaultHistoryPoints), kDefaultHistoryMinSteps);
+  }
   const auto frames = job.at("output").at("frames").get<std::int64_t>();
   out.compress_frames = job.at("output").at("compress").get<bool>();
   if (frames > 0) {

@@ -33,6 +33,11 @@ nlohmann::json parse_job_text(const std::string& text);
 // Schema check and defaults; throws InvalidJob listing every violation.
 nlohmann::json validate_job(const nlohmann::json& job);
 
+// A job that names no output.history_points: this many history samples over
+// the run, at least kDefaultHistoryMinSteps steps apart.
+inline constexpr std::int64_t kDefaultHistoryPoints = 4000;
+inline constexpr std::int64_t kDefaultHistoryMinSteps = 10;
+
 struct PreparedJob {
   nlohmann::json job;  // with defaults
   Scene scene;

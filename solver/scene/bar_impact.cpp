@@ -142,6 +142,7 @@ Scene build_bar_impact(const SceneInput& in) {
   const Material mat = read_material(s.at("material"));
 
   Scene scene = start_scene("bar_impact", in);
+  scene.history_every_step = true;  // the contact time and the peak contact stress
   Simulation& sim = scene.sim;
   const SceneSpacings sp = lattice_scene_spacings(sim.discretization, H / 10.0);
   const Bars bars = bar_size(s, sp, L, H);

@@ -43,6 +43,10 @@ struct Scene {
   // a scene whose contact the particles resolve (hertz) sets 0.
   double contact_smoothing_spacings = 4.0;
   double default_dt_s = 0.0;  // 0: the automatic step (a fraction of the stable limit)
+  // The analysis reads times and peaks off the history at the step's
+  // resolution (an impact's contact time, a pulse's arrival): a job that
+  // names no output.history_points then samples every step, not by time.
+  bool history_every_step = false;
   std::vector<Outline> outlines;
   // What was modelled, for the summary (counts, dimensions, notes).
   nlohmann::json description = nlohmann::json::object();

@@ -129,6 +129,7 @@ Scene build_spinning_disk(const SceneInput& in) {
   const PlaneDeviator s0 = read_initial_stress(s);
 
   Scene scene = start_scene("spinning_disk", in);
+  scene.history_every_step = true;  // the peak stress and rotation error over the turn
   Simulation& sim = scene.sim;
   const SceneSpacings sp = lattice_scene_spacings(sim.discretization, R / 15.0);
   if (R < 3 * sp.dx)

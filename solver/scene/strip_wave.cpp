@@ -169,6 +169,7 @@ Scene build_strip_wave(const SceneInput& in) {
   const Material mat = read_material(s.at("material"));
 
   Scene scene = start_scene("strip_wave", in);
+  scene.history_every_step = true;  // the pulse's arrival times and peaks
   Simulation& sim = scene.sim;
   const SceneSpacings sp = lattice_scene_spacings(sim.discretization, L / 400.0);
   const double w = s.contains("pulse_width_m") ? s.at("pulse_width_m").get<double>() : 0.04 * L;
