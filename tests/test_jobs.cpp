@@ -86,6 +86,27 @@ TEST(Jobs, ARunRecordsAtMostTheSamplesAndFramesAskedFor) {
   EXPECT_EQ(r.history.column("time_s").back(), prepared.scene.sim.time);  // the last step
 }
 
+TEST(Jobs, ADefaultHistoryIsSampledByTimeUnlessTheSceneReadsEveryStep) {
+  // A short run that names no history_points: a row every 10 steps, not
+  // one per step (kDefaultHistoryMinSteps).
+  const PreparedJob plate = prepare_job(kPlate, 1);
+  ASSERT_LT(plate.steps, kDefaultHistoryPoints * kDefaultHistoryMinSteps);
+  EXPECT_EQ(plate.history_every, kDefaultHistoryMinSteps);
+  // Named, the points are taken as asked.
+  json asked = kPlate;
+  asked["output"] = {{"history_points", plate.steps}};
+  EXPECT_EQ(prepare_job(asked, 1).history_every, 1);
+  // A long run spreads its default rows over the run.
+  json long_run = kPlate;
+  long_run["time"] = {{"end_s", 0.001 * 20 * double(kDefaultHistoryPoints) / double(plate.steps)}};
+  EXPECT_GT(prepare_job(long_run, 1).history_every, kDefaultHistoryMinSteps);
+  // An impact's contact time is read off the history: every step.
+  const json impact = {{"scene", {{"type", "bar_impact"}}}};
+  const PreparedJob bars = prepare_job(impact, 1);
+  ASSERT_LT(bars.steps, kDefaultHistoryPoints);
+  EXPECT_EQ(bars.history_every, 1);
+}
+
 TEST(Jobs, ALargeSceneTakesThreadsBySizeWithoutATrial) {
   const json plate = {{"scene", {{"type", "plate"}}},
                       {"discretization", {{"spacing_m", 0.0003}}},

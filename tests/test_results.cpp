@@ -17,6 +17,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <random>
@@ -26,6 +27,7 @@
 #include <string_view>
 #include <thread>
 
+#include "results/h5_series.hpp"
 #include "results/h5_util.hpp"
 #include "results/outlines.hpp"
 #include "results/register_outputs.hpp"
@@ -442,6 +444,43 @@ TEST_F(ResultsRun, FieldsAreChunkedOneFrameAChunkAndStoredRawByDefault) {
   for (const char* name : {"initial/position", "initial/mass", "initial/body_id"}) {
     EXPECT_TRUE(h5::has_deflate(h5::open_dataset(f.get(), name).get())) << name;
   }
+}
+
+// A row written straight to its chunks (Series::append_row_direct) reads
+// back as written, across chunks and into a last partial one, and past the
+// planned rows.
+TEST(ResultsSeries, RowsWrittenStraightToTheirChunksReadBackAsWritten) {
+  h5::QuietErrors quiet;
+  const fs::path dir = fresh_dir("direct_rows");
+  const fs::path path = dir / "rows.h5";
+  constexpr hsize_t kAlong = 10, kPerChunk = 4;  // chunks of 4, 4 and 2 (padded)
+  std::vector<std::vector<double>> rows;
+  {
+    h5::Id file = h5::create_file(path);
+    h5::Series::Shape shape;
+    shape.row = {kAlong, 3};
+    shape.chunk = {1, kPerChunk, 3};
+    const double fill = std::numeric_limits<double>::quiet_NaN();
+    h5::Series series(file.get(), "vectors", H5T_IEEE_F64LE, shape, 2, &fill);
+    for (int r = 0; r < 3; ++r) {  // the third row grows the dataset
+      std::vector<double> row(kAlong * 3);
+      for (std::size_t k = 0; k < row.size(); ++k) row[k] = 100.0 * r + 0.5 * double(k);
+      series.append_row_direct(row.data(), sizeof(double));
+      rows.push_back(row);
+    }
+    EXPECT_EQ(series.written(), 3u);
+  }
+  h5::Id file = h5::open_file_read(path);
+  h5::Id set = h5::open_dataset(file.get(), "vectors");
+  ASSERT_EQ(h5::dims_of(set.get())[0], 4u);  // grown to twice the plan
+  std::vector<double> back(kAlong * 3);
+  for (hsize_t r = 0; r < 3; ++r) {
+    h5::read_rows(set.get(), H5T_NATIVE_DOUBLE, back.data(), r, 1);
+    EXPECT_EQ(back, rows[r]) << "row " << r;
+  }
+  h5::read_rows(set.get(), H5T_NATIVE_DOUBLE, back.data(), 3, 1);  // planned, never written
+  EXPECT_TRUE(std::all_of(back.begin(), back.end(), [](double v) { return std::isnan(v); }));
+  fs::remove_all(dir);
 }
 
 TEST(ResultsCompression, CompressedFramesAreDeflatedSmallerAndReadTheSame) {
