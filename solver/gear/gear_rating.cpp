@@ -137,7 +137,7 @@ double iso_single_pair_stiffness(const geometry::PinionGeometry& g, double E_pin
   // q' [mm um/N], ISO 6336-1 eq. (69) with the rack's terms (1/z_n2 = 0, x_2 = 0).
   const double q = 0.04723 + 0.15551 / z - 0.00635 * x - 0.11654 * x / z + 0.00529 * x * x;
   const double c_th = 1.0 / q;  // N/(mm um)
-  constexpr double kCM = 0.8, kCR = 1.0;
+  constexpr double kCM = kIsoMeasuredOverTheoretical, kCR = 1.0;
   const double h_fp = tool.dedendum_coef;
   const double alpha_deg = tool.pressure_angle_rad * 180.0 / kPi;
   const double c_b = (1.0 + 0.5 * (1.2 - h_fp)) * (1.0 - 0.02 * (20.0 - alpha_deg));  // eq. (72)

@@ -68,6 +68,9 @@ ThirtyDegreePoints thirty_degree_points(const geometry::PinionGeometry& pinion);
 // with E = 2 E1 E2/(E1 + E2) for materials other than steel (E_st 206 GPa).
 double iso_single_pair_stiffness(const geometry::PinionGeometry& pinion, double E_pinion_Pa,
                                  double E_rack_Pa);
+// ISO's C_M: measured over theoretical stiffness of real solid gears. The
+// particles model the ideal elastic pair, which c' / C_M describes.
+inline constexpr double kIsoMeasuredOverTheoretical = 0.8;
 
 // ISO 6336-2 nominal contact stress of a spur pair with a rack (u -> inf):
 // sigma_H0 = Z_H Z_E sqrt(F_t / (d1 b)), Z_H = sqrt(2 / (cos a sin a)),

@@ -329,6 +329,12 @@ void add_static_mesh_stiffness(nlohmann::json& sc, double mesh_stiffness, const 
   sc["mesh_stiffness_N_per_mm_um"] = mesh_stiffness;
   sc["iso_mesh_stiffness_N_per_mm_um"] = 1e-9 * L.iso_mesh_stiffness;
   sc["mesh_stiffness_error_vs_iso"] = mesh_stiffness / (1e-9 * L.iso_mesh_stiffness) - 1.0;
+  // The ideal elastic pair's stiffness, c' without ISO's C_M for real gears
+  // (docs/gears.md, "Which ISO number to compare with"): the model's truth
+  // lies between the two.
+  const double theoretical = 1e-9 * L.iso_mesh_stiffness / gear::kIsoMeasuredOverTheoretical;
+  sc["iso_theoretical_mesh_stiffness_N_per_mm_um"] = theoretical;
+  sc["mesh_stiffness_error_vs_iso_theoretical"] = mesh_stiffness / theoretical - 1.0;
   // Along the line of action: delta_n = delta_x cos(alpha), per F_bt / b.
   const double c = std::cos(L.pressure_angle);
   sc["mesh_compliance"] =
