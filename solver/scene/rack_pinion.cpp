@@ -25,6 +25,14 @@ constexpr double kPi = std::numbers::pi;
 // Spacing of the active flanks against the fillets' (body-fitted particles).
 constexpr double kPinionFlankOverFine = 1.5;
 constexpr double kRackFlankOverFine = 2.0;
+// The default bulk spacing is at most this many default fillet spacings.
+// At the standard cutter tip (rho_fP* 0.38) the fillet radius is about
+// 0.6 modules and the ratio about 2.9 : 1, and the grading ends at the
+// tooth's root; a small fillet (rho_fP* 0.25: 4.7 : 1) made the grading run
+// through the tooth, and the fillet peak scattered from -5.9 to +5.4 %
+// against FE with the arrangement; capped at 3 : 1, -5.4 to -2.8 %
+// (docs/gears.md, "Pinions the defaults were not made on").
+constexpr double kBulkOverFineMax = 3.0;
 
 double deg(double d) {
   return d * kPi / 180.0;
@@ -169,7 +177,8 @@ struct GearSpacings {
 };
 
 // Spacings follow the gear, not a number: the bulk a quarter of the
-// module (the seed paper's 1 mm at module 4), and body-fitted particles a
+// module (the seed paper's 1 mm at module 4; body-fitted, at most three
+// fillet spacings), and body-fitted particles a
 // seventh of the root fillet radius rho_F at the fillets, where the
 // stress varies over that length: the fillet peak within 5 % of a
 // converged finite-element solution (docs/gears.md: rho_F/5 reads it
@@ -178,8 +187,11 @@ struct GearSpacings {
 GearSpacings choose_spacings(Simulation& sim, const Discretization& job, GearLayout& L) {
   const bool fitted =
       particle_layout(job, ParticleLayout::BodyFitted) == ParticleLayout::BodyFitted;
-  const SceneSpacings base =
-      graded_scene_spacings(sim.discretization, fitted, 0.25 * L.module_m, L.iso_pitch.rho_F / 7.0);
+  const double fine = L.iso_pitch.rho_F / 7.0;
+  const bool default_fine = sim.discretization.fine_dx <= 0.0;
+  const double bulk = fitted && default_fine ? std::min(0.25 * L.module_m, kBulkOverFineMax * fine)
+                                             : 0.25 * L.module_m;
+  const SceneSpacings base = graded_scene_spacings(sim.discretization, fitted, bulk, fine);
   GearSpacings sp;
   sp.fitted = base.fitted;
   sp.dx = base.dx;
