@@ -81,11 +81,6 @@ void refresh(const Simulation& sim, HealthPairs& h) {
 
 }  // namespace
 
-Spacing min_spacing(const Simulation& sim) {
-  HealthPairs pairs;
-  return min_spacing(sim, pairs);
-}
-
 Spacing min_spacing(const Simulation& sim, HealthPairs& h) {
   refresh(sim, h);
   const Particles& p = sim.particles;

@@ -109,7 +109,7 @@ struct Spacing {
   double over_dx = 1e300;
   long particle = -1;
 };
-Spacing min_spacing(const Simulation& sim);
+// `pairs`: kept between calls (HealthPairs).
 Spacing min_spacing(const Simulation& sim, HealthPairs& pairs);
 
 // Deepest overlap between bodies over dx (0 with one body).
