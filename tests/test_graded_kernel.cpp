@@ -114,18 +114,18 @@ TEST(GradedKernel, CorrectedGradientsAreExactForQuadraticFieldsEverywhere) {
     for (std::uint32_t e = rp.rows[i]; e < rp.rows[i + 1]; ++e) {
       const std::uint32_t j = rp.j[e];
       const double d = u(p.x0[j], p.y0[j]) - u(p.x0[i], p.y0[i]);
-      gx[i] += rp.vol0[j] * d * rp.gix[e];
-      gy[i] += rp.vol0[j] * d * rp.giy[e];
-      gx[j] -= rp.vol0[i] * d * rp.gjx[e];
-      gy[j] -= rp.vol0[i] * d * rp.gjy[e];
+      gx[i] += rp.vol0[j] * d * rp.g[4 * e];
+      gy[i] += rp.vol0[j] * d * rp.g[4 * e + 1];
+      gx[j] -= rp.vol0[i] * d * rp.g[4 * e + 2];
+      gy[j] -= rp.vol0[i] * d * rp.g[4 * e + 3];
       // sum_j V_j (X_j - X_i) (x) G_ij = I (linear consistency)
       const double rx = p.x0[j] - p.x0[i], ry = p.y0[j] - p.y0[i];
-      mxx[i] += rp.vol0[j] * rx * rp.gix[e];
-      myy[i] += rp.vol0[j] * ry * rp.giy[e];
-      mxy[i] += rp.vol0[j] * rx * rp.giy[e];
-      mxx[j] -= rp.vol0[i] * rx * rp.gjx[e];
-      myy[j] -= rp.vol0[i] * ry * rp.gjy[e];
-      mxy[j] -= rp.vol0[i] * rx * rp.gjy[e];
+      mxx[i] += rp.vol0[j] * rx * rp.g[4 * e];
+      myy[i] += rp.vol0[j] * ry * rp.g[4 * e + 1];
+      mxy[i] += rp.vol0[j] * rx * rp.g[4 * e + 1];
+      mxx[j] -= rp.vol0[i] * rx * rp.g[4 * e + 2];
+      myy[j] -= rp.vol0[i] * ry * rp.g[4 * e + 3];
+      mxy[j] -= rp.vol0[i] * rx * rp.g[4 * e + 3];
     }
   }
   std::size_t quadratic = 0;

@@ -91,8 +91,8 @@ TEST(PairOnce, ForcesEqualFullRowSums) {
   std::vector<std::vector<Entry>> rows(n);
   for (std::size_t i = 0; i < n; ++i) {
     for (std::uint32_t k = rp.rows[i]; k < rp.rows[i + 1]; ++k) {
-      rows[i].push_back({rp.j[k], rp.gix[k], rp.giy[k]});
-      rows[rp.j[k]].push_back({static_cast<std::uint32_t>(i), rp.gjx[k], rp.gjy[k]});
+      rows[i].push_back({rp.j[k], rp.g[4 * k], rp.g[4 * k + 1]});
+      rows[rp.j[k]].push_back({static_cast<std::uint32_t>(i), rp.g[4 * k + 2], rp.g[4 * k + 3]});
     }
   }
   auto g_of = [&](std::size_t a, std::size_t b, double& gx, double& gy) {
@@ -119,12 +119,12 @@ TEST(PairOnce, ForcesEqualFullRowSums) {
       f[3] += vj * duy * e.gy;
       double gjx = 0, gjy = 0;
       g_of(e.j, i, gjx, gjy);
-      // The step keeps V0 P (ReferencePairs::px).
+      // The step keeps V0 P (ReferencePairs::pv: xx, xy, yx, yy).
       const double vi = rp.vol0[i];
-      a[0] += vj * ((rp.px[i] * e.gx + rp.py[i] * e.gy) / vi -
-                    (rp.px[e.j] * gjx + rp.py[e.j] * gjy) / vj);
-      a[1] += vj * ((rp.pyx[i] * e.gx + rp.pyy[i] * e.gy) / vi -
-                    (rp.pyx[e.j] * gjx + rp.pyy[e.j] * gjy) / vj);
+      const double* pi = &rp.pv[4 * i];
+      const double* pj = &rp.pv[4 * e.j];
+      a[0] += vj * ((pi[0] * e.gx + pi[1] * e.gy) / vi - (pj[0] * gjx + pj[1] * gjy) / vj);
+      a[1] += vj * ((pi[2] * e.gx + pi[3] * e.gy) / vi - (pj[2] * gjx + pj[3] * gjy) / vj);
     }
     worst_f = std::max({worst_f, std::abs(f[0] - p.fxx[i]), std::abs(f[1] - p.fxy[i]),
                         std::abs(f[2] - p.fyx[i]), std::abs(f[3] - p.fyy[i])});
@@ -159,11 +159,6 @@ TEST(PairOnce, AnyThreadCountGivesTheSameForcesToRoundOff) {
   EXPECT_GT(one.energy.dissipated, 0.0);
 }
 
-// Chunks are cut at equal cost: pairs plus one per row, plus the weighted
-// extra. Eight rows of three pairs each (cost 4 a row, 32 in all): the cut
-// falls after row 3. With an extra of 4 on the last four rows at weight 0.5
-// (costs 4, 4, 4, 4, 6, 6, 6, 6; 40 in all) the first chunk takes rows until
-// it holds at least half: 4 + 4 + 4 + 4 + 6 = 22, so through row 4.
 // Every array a thread writes by rows starts on a cache line and owns whole
 // lines (cache_aligned.hpp): no other array, and no small object written by
 // another thread, shares its first or last line.
@@ -173,10 +168,11 @@ TEST(PairOnce, ArraysWrittenByRowsOwnWholeCacheLines) {
   forces(sim);
   const Particles& p = sim.particles;
   const ReferencePairs& rp = sim.reference;
-  const Column<double>* arrays[] = {
-      &p.x,    &p.y,    &p.vx,  &p.vy,  &p.ax,    &p.ay,     &p.rho,    &p.p,      &p.sxx, &p.syy,
-      &p.sxy,  &p.szz,  &p.fxx, &p.fxy, &p.fyx,   &p.fyy,    &p.ext_ax, &p.ext_ay, &rp.px, &rp.py,
-      &rp.pyx, &rp.pyy, &rp.ux, &rp.uy, &rp.sums, &rp.hg_ax, &rp.hg_ay, &rp.gix,   &rp.dw0};
+  const Column<double>* arrays[] = {&p.x,      &p.y,      &p.vx,   &p.vy,      &p.ax,     &p.ay,
+                                    &p.rho,    &p.p,      &p.sxx,  &p.syy,     &p.sxy,    &p.szz,
+                                    &p.fxx,    &p.fxy,    &p.fyx,  &p.fyy,     &p.ext_ax, &p.ext_ay,
+                                    &rp.pv,    &rp.state, &rp.ux,  &rp.uy,     &rp.sums,  &rp.hg_ax,
+                                    &rp.hg_ay, &rp.g,     &rp.dw0, &rp.visc_a, &rp.visc_b};
   std::vector<std::pair<std::uintptr_t, std::uintptr_t>> lines;
   for (const Column<double>* a : arrays) {
     ASSERT_FALSE(a->empty());
@@ -225,6 +221,11 @@ TEST(PairOnce, LargeArraysStartInDifferentCacheSets) {
   }
 }
 
+// Chunks are cut at equal cost: pairs plus one per row, plus the weighted
+// extra. Eight rows of three pairs each (cost 4 a row, 32 in all): the cut
+// falls after row 3. With an extra of 4 on the last four rows at weight 0.5
+// (costs 4, 4, 4, 4, 6, 6, 6, 6; 40 in all) the first chunk takes rows until
+// it holds at least half: 4 + 4 + 4 + 4 + 6 = 22, so through row 4.
 TEST(PairOnce, ChunksAreCutAtEqualCost) {
   std::vector<std::uint32_t> rows = {0}, j;
   const std::uint32_t n = 8;
@@ -310,44 +311,6 @@ TEST(PairOnce, GroupedSpillsEqualSeparateOnes) {
   }
   // The first row of a later chunk received spilled sums.
   EXPECT_GT(sums[0][apart.begin(1)], 0.0);
-}
-
-// Every 1024 steps the momentum cut is made again from the pairs the last
-// momentum pass counted as approaching. A block whose upper half is
-// squeezed (its pairs approach) and whose lower half stands still: the cut
-// moves, it is the cut those counts give (with total_lagrangian.cpp's
-// costs), the deformation cut stays, and two runs repeat bit for bit.
-TEST(PairOnce, ChunksFollowTheApproachingPairsAndRunsRepeatBitForBit) {
-  auto squeezed = [] {
-    Simulation sim = deformed_block(20, 2, 0.0);
-    Particles& p = sim.particles;
-    double y_mid = 0.0;
-    for (std::size_t i = 0; i < p.n; ++i) y_mid += p.y[i] / static_cast<double>(p.n);
-    for (std::size_t i = 0; i < p.n; ++i) {
-      const bool upper = p.y[i] > y_mid;
-      p.vx[i] = upper ? -2.0 * (p.x[i] - p.x[0]) : 0.0;
-      p.vy[i] = 0.0;
-    }
-    integrate::initialise(sim);
-    return sim;
-  };
-  Simulation a = squeezed();
-  const std::size_t by_pairs = a.reference.momentum_chunks.end(0);
-  const std::size_t deformation_cut = a.reference.deformation_chunks.end(0);
-  for (int s = 0; s < 1023; ++s) integrate::step(a);
-  RowChunks expected;
-  expected.plan(a.reference.rows, a.reference.j, 2, 6, {3.0, a.reference.approaching.data(), 1.0});
-  integrate::step(a);  // step 1024 cuts again before its passes
-  ASSERT_EQ(a.reference.planned_step, 1024);
-  EXPECT_EQ(a.reference.momentum_chunks.end(0), expected.end(0));
-  EXPECT_NE(a.reference.momentum_chunks.end(0), by_pairs) << "the counts did not move the cut";
-  EXPECT_EQ(a.reference.deformation_chunks.end(0), deformation_cut);
-  Simulation b = squeezed();
-  for (int s = 0; s < 1024; ++s) integrate::step(b);
-  for (std::size_t i = 0; i < a.particles.n; ++i) {
-    ASSERT_EQ(a.particles.x[i], b.particles.x[i]) << i;
-    ASSERT_EQ(a.particles.vx[i], b.particles.vx[i]) << i;
-  }
 }
 
 // A scene of one material and one spacing (the seed paper's gear) takes the

@@ -25,32 +25,12 @@ constexpr int kMomentumSpill = 6;
 
 constexpr std::size_t kNeverStop = 0;
 
-// What a row costs besides its pairs, in pairs of its own pass, and what an
-// approaching pair costs (the viscosity's division and square root) on top
-// of a separating one: measured on the seed paper's gear, one thread
-// (docs/speed-accuracy.md, "a cut for each pair pass").
+// What a row costs besides its pairs, in pairs of its own pass: measured
+// on the seed paper's gear, one thread (docs/speed-accuracy.md, "a cut for
+// each pair pass"). Every pair of a pass costs the same: the viscosity has
+// no branch (artificial_viscosity.hpp, viscosity_pair).
 constexpr double kStressRowCost = 4.0;
 constexpr double kMomentumRowCost = 3.0;
-constexpr double kApproachingPairCost = 1.0;
-
-// The momentum cut is made at the start by pairs and rows, and again every
-// kReplanSteps steps with each row's approaching pairs (v_ij . x_ij < 0,
-// counted by the last momentum pass) weighted: in the meshing gear the
-// pinion's pairs approach more often than the rack's, and a cut by pairs
-// alone leaves its thread behind (docs/speed-accuracy.md, "chunks cut by
-// cost"). The counts are a
-// function of the state, not of timing, so a run repeats bit for bit; a new
-// cut changes which sums spill, so the round-off. The deformation cut never
-// changes: the reference pairs do not.
-constexpr long kReplanSteps = 1024;
-
-// The momentum pass counts the approaching pairs only in the step before a
-// new cut, the one whose counts the cut reads (planned_chunks is called
-// with the next step's number), not in the other 1,023 (about 1 % of the
-// gear's step on one thread).
-bool count_approaching(long step) {
-  return (step + 1) % kReplanSteps == 0;
-}
 
 // Four sums of one particle as one vector (GCC's vector extension: one
 // AVX register). A pair adds its four values to its far end with one load,
@@ -73,21 +53,16 @@ struct Cuts {
   RowChunks& momentum;
 };
 
-Cuts planned_chunks(Simulation& sim, long step) {
+// Cut once per run and thread count: the reference pairs never change.
+Cuts planned_chunks(Simulation& sim) {
   ReferencePairs& rp = sim.reference;
   const int threads = std::max(1, sim.threads);
   if (!rp.deformation_chunks.planned_for(threads, kDeformationSpill)) {
     rp.deformation_chunks.plan(rp.rows, rp.j, threads, kDeformationSpill, {kStressRowCost});
     rp.chunk_peaks.assign(threads, {});
   }
-  const bool first = !rp.momentum_chunks.planned_for(threads, kMomentumSpill);
-  const bool due = threads > 1 && step % kReplanSteps == 0 && step != rp.planned_step;
-  if (first || due) {
-    const bool counted = rp.approaching.size() + 1 == rp.rows.size();
-    rp.momentum_chunks.plan(
-        rp.rows, rp.j, threads, kMomentumSpill,
-        {kMomentumRowCost, counted ? rp.approaching.data() : nullptr, kApproachingPairCost});
-    rp.planned_step = step;
+  if (!rp.momentum_chunks.planned_for(threads, kMomentumSpill)) {
+    rp.momentum_chunks.plan(rp.rows, rp.j, threads, kMomentumSpill, {kMomentumRowCost});
   }
   return {rp.deformation_chunks, rp.momentum_chunks};
 }
@@ -111,8 +86,7 @@ void deformation_pairs(Simulation& sim, RowChunks& chunks, int c) {
   const ReferencePairs& rp = sim.reference;
   const std::uint32_t* rows = rp.rows.data();
   const std::uint32_t* jj = rp.j.data();
-  const double *gix = rp.gix.data(), *giy = rp.giy.data();
-  const double *gjx = rp.gjx.data(), *gjy = rp.gjy.data();
+  const double* g = rp.g.data();  // G_ij x, y, G_ji x, y
   const double* vol0 = rp.vol0.data();
   const double *ux = rp.ux.data(), *uy = rp.uy.data();
   // M = F - I, xx, xy, yx, yy side by side (ReferencePairs::sums).
@@ -129,12 +103,12 @@ void deformation_pairs(Simulation& sim, RowChunks& chunks, int c) {
         const std::uint32_t j = jj[k];
         const double dux = ux[j] - uxi, duy = uy[j] - uyi;
         const double vj = vol0[j];
-        const double ax = vj * gix[k], ay = vj * giy[k];
+        const double ax = vj * g[4 * k], ay = vj * g[4 * k + 1];
         mxx += dux * ax;
         mxy += dux * ay;
         myx += duy * ax;
         myy += duy * ay;
-        const double bx = vi * gjx[k], by = vi * gjy[k];
+        const double bx = vi * g[4 * k + 2], by = vi * g[4 * k + 3];
         // M_j += (u_i - u_j) (x) V0_i G_ji
         add_product(to + 4 * (j - base), Four{-dux, -dux, -duy, -duy}, Four{bx, by, bx, by});
       }
@@ -159,7 +133,9 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
   // Raw pointers, as in the pair loops: no reload of an array's address
   // after each store.
   double *Fxx = p.fxx.data(), *Fxy = p.fxy.data(), *Fyx = p.fyx.data(), *Fyy = p.fyy.data();
-  double *Pxx = rp.px.data(), *Pxy = rp.py.data(), *Pyx = rp.pyx.data(), *Pyy = rp.pyy.data();
+  double* pv = rp.pv.data();
+  double* state = rp.state.data();
+  const double *x = p.x.data(), *y = p.y.data(), *vx = p.vx.data(), *vy = p.vy.data();
   double *pressure = p.p.data(), *Sxx = p.sxx.data(), *Syy = p.syy.data();
   double *Szz = p.szz.data(), *Sxy = p.sxy.data(), *rho = p.rho.data();
   const double* rho0 = p.rho0.data();
@@ -182,12 +158,17 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
     // P = F S
     const double pxx = fxx * sxx + fxy * sxy, pxy = fxx * sxy + fxy * syy;
     const double pyx = fyx * sxx + fyy * sxy, pyy = fyx * sxy + fyy * syy;
-    // Kept times the reference volume (ReferencePairs::px).
+    // Kept times the reference volume (ReferencePairs::pv).
     const double v0 = vol0[i];
-    Pxx[i] = v0 * pxx;
-    Pxy[i] = v0 * pxy;
-    Pyx[i] = v0 * pyx;
-    Pyy[i] = v0 * pyy;
+    pv[4 * i] = v0 * pxx;
+    pv[4 * i + 1] = v0 * pxy;
+    pv[4 * i + 2] = v0 * pyx;
+    pv[4 * i + 3] = v0 * pyy;
+    // Where the momentum pass gathers them (ReferencePairs::state).
+    state[4 * i] = x[i];
+    state[4 * i + 1] = y[i];
+    state[4 * i + 2] = vx[i];
+    state[4 * i + 3] = vy[i];
     // Cauchy sigma = F S F^T / J (sigma_zz = S_zz / J) for output.
     const double inv_jac = 1.0 / (fxx * fyy - fxy * fyx);
     const double cxx = (pxx * fxx + pxy * fxy) * inv_jac;
@@ -201,6 +182,19 @@ void stress_per_particle(Simulation& sim, RowChunks& chunks, int c) {
     Szz[i] = czz - mean;
     Sxy[i] = cxy;
     rho[i] = rho0[i] * inv_jac;
+  }
+}
+
+// The momentum pass's packed positions and velocities for chunk c, where
+// no stress pass came just before it (the momentum pass run on its own).
+void copy_state(Simulation& sim, const RowChunks& chunks, int c) {
+  const Particles& p = sim.particles;
+  double* const state = sim.reference.state.data();
+  for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
+    state[4 * i] = p.x[i];
+    state[4 * i + 1] = p.y[i];
+    state[4 * i + 2] = p.vx[i];
+    state[4 * i + 3] = p.vy[i];
   }
 }
 
@@ -242,8 +236,8 @@ void stress_pass(Simulation& sim, RowChunks& chunks, int c) {
 }
 
 // The pair loop of the momentum equation, instantiated with and without
-// hourglass control and the count of approaching pairs: raw pointers, and
-// no branch but the viscosity's (above). Each pair once, written to both ends (RowChunks):
+// hourglass control and the gathered mass: raw pointers, no branch. Each
+// pair once, written to both ends (RowChunks):
 //   stress share  a_i += -V0_j P_j G_ji / rho0_i,  a_j += -V0_i P_i G_ij / rho0_j
 //   viscosity     a_i -= m_j Pi_ij g_ij,           a_j += m_i Pi_ij g_ij
 // (equal and opposite: momentum is conserved exactly). The own share
@@ -252,31 +246,23 @@ void stress_pass(Simulation& sim, RowChunks& chunks, int c) {
 // in gathers, masks and set-up than they save (docs/speed-accuracy.md).
 // Momentum loop, pass 1 for chunk c; returns the energy the hourglass
 // control removed per unit time (the viscosity's: accelerations_per_particle).
-template <bool kHourglass, bool kCount, bool kUniform, bool kGraded>
+template <bool kHourglass, bool kUniform>
 double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
-  Particles& p = sim.particles;
+  const Particles& p = sim.particles;
   ReferencePairs& rp = sim.reference;
-  const double mass_all = rp.uniform.mass, cs_all = rp.uniform.cs;
-  const ArtificialViscosity& av = sim.method.viscosity;
-  const double h = sim.h();
+  const double mass_all = rp.uniform.mass;
   const double hg = sim.method.hourglass.coefficient;
-  const double alpha = av.alpha, beta = av.beta;
-  const double eta2 = (av.eta_over_h * h) * (av.eta_over_h * h);
-  // Graded particles (kGraded): the pair's own h_ij = (h_i + h_j) / 2.
-  const double* hp = rp.hp.data();
-  const double eta_over_h2 = av.eta_over_h * av.eta_over_h;
   const std::uint32_t* rows = rp.rows.data();
   const std::uint32_t* jj = rp.j.data();
-  const double *gix = rp.gix.data(), *giy = rp.giy.data();
-  const double *gjx = rp.gjx.data(), *gjy = rp.gjy.data();
-  const double *dw0 = rp.dw0.data(), *w0 = rp.w0.data();
+  const double* g = rp.g.data();  // G_ij, G_ji
+  const double *visc_a = rp.visc_a.data(), *visc_b = rp.visc_b.data();
+  const double* w0 = rp.w0.data();
   const double* e_over_rho0 = rp.e_over_rho0.data();
-  const double *Pxx = rp.px.data(), *Pxy = rp.py.data();
-  const double *Pyx = rp.pyx.data(), *Pyy = rp.pyy.data();
+  const double* pv = rp.pv.data();        // V0 P: xx, xy, yx, yy
+  const double* state = rp.state.data();  // x, y, vx, vy
   const double* vol0 = rp.vol0.data();
-  const double *x = p.x.data(), *y = p.y.data(), *vx = p.vx.data(), *vy = p.vy.data();
+  const double* mass = p.mass.data();
   const double *x0 = p.x0.data(), *y0 = p.y0.data();
-  const double *cs = p.cs.data(), *rho = p.rho.data(), *mass = p.mass.data();
   const double *Fxx = p.fxx.data(), *Fxy = p.fxy.data(), *Fyx = p.fyx.data(), *Fyy = p.fyy.data();
   // Sums per particle: stress share and viscosity side by side (4 i + q),
   // hourglass apart (components 4 and 5 of the spill window).
@@ -295,13 +281,14 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
   }
   for (std::size_t i = lo; i < hi; ++i) {
     const double e_mod = kHourglass ? e_over_rho0[i] : 0.0;
-    const double xi = x[i], yi = y[i], vxi = vx[i], vyi = vy[i];
-    const double csi = cs[i], rhoi = rho[i], mi = mass[i], vi = vol0[i];
-    const double qxx = Pxx[i], qxy = Pxy[i], qyx = Pyx[i], qyy = Pyy[i];  // V0_i P_i
+    const double* const si = state + 4 * i;
+    const double xi = si[0], yi = si[1], vxi = si[2], vyi = si[3];
+    const double mi = mass[i], vi = vol0[i];
+    const double* const qi = pv + 4 * i;  // V0_i P_i
+    const double qxx = qi[0], qxy = qi[1], qyx = qi[2], qyy = qi[3];
     // Row i continues the sums its pairs with j < i began.
     double sx = sums[4 * i], sy = sums[4 * i + 1], vsx = sums[4 * i + 2], vsy = sums[4 * i + 3];
     double hsx = kHourglass ? hg_sum[0][i] : 0.0, hsy = kHourglass ? hg_sum[1][i] : 0.0;
-    std::uint32_t approaching = 0;
     // Inlined by force: out of line (GCC's choice with hourglass control) its
     // sums and array addresses go through the closure to memory at every
     // pair (docs/speed-accuracy.md, "Hourglass control's pair loop").
@@ -310,26 +297,18 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
       for (std::uint32_t k = k0; k < k1; ++k) {
         const std::uint32_t j = jj[k];
         const std::size_t t = j - base;
-        const double bx = gjx[k], by = gjy[k];  // G_ji
-        sx -= Pxx[j] * bx + Pxy[j] * by;        // V0_j P_j G_ji
-        sy -= Pyx[j] * bx + Pyy[j] * by;
-        const double ax = gix[k], ay = giy[k];  // G_ij
+        const double* const gk = g + 4 * k;
+        const double* const qj = pv + 4 * j;
+        const double* const sj = state + 4 * j;
+        const double bx = gk[2], by = gk[3];  // G_ji
+        sx -= qj[0] * bx + qj[1] * by;        // V0_j P_j G_ji
+        sy -= qj[2] * bx + qj[3] * by;
+        const double ax = gk[0], ay = gk[1];  // G_ij
         const double share_x = -(qxx * ax + qxy * ay), share_y = -(qyx * ax + qyy * ay);
-        const double dx = xi - x[j], dy = yi - y[j];
-        const double dvx = vxi - vx[j], dvy = vyi - vy[j];
-        const double r2 = dx * dx + dy * dy;
+        const double dx = xi - sj[0], dy = yi - sj[1];
+        const double dvx = vxi - sj[2], dvy = vyi - sj[3];
         const double vr = dvx * dx + dvy * dy;
-        const double cs_mean = kUniform ? cs_all : 0.5 * (csi + cs[j]);
-        double pg;
-        if constexpr (kGraded) {
-          const double hij = 0.5 * (hp[i] + hp[j]);
-          pg = viscosity_pair(dw0[k], hij, vr, r2, r2 + eta_over_h2 * hij * hij, alpha, beta,
-                              cs_mean, 0.5 * (rhoi + rho[j]));
-        } else {
-          pg = viscosity_pair(dw0[k], h, vr, r2, r2 + eta2, alpha, beta, cs_mean,
-                              0.5 * (rhoi + rho[j]));
-        }
-        if constexpr (kCount) approaching += vr < 0.0 ? 1 : 0;
+        const double pg = viscosity_pair(visc_a[k], visc_b[k], vr);
         const double mj = kUniform ? mass_all : mass[j];
         vsx -= mj * pg * dx;
         vsy -= mj * pg * dy;
@@ -341,7 +320,8 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
           // W / (2 |X|^2), e_over_rho0 E / rho0 (set-up).
           const double common = hourglass_stiffness(
               hg, w0[k], dx, dy, x0[i] - x0[j], y0[i] - y0[j], 0.5 * (Fxx[i] + Fxx[j]),
-              0.5 * (Fxy[i] + Fxy[j]), 0.5 * (Fyx[i] + Fyx[j]), 0.5 * (Fyy[i] + Fyy[j]), r2);
+              0.5 * (Fxy[i] + Fxy[j]), 0.5 * (Fyx[i] + Fyx[j]), 0.5 * (Fyy[i] + Fyy[j]),
+              dx * dx + dy * dy);
           const double fi = common * e_mod * vol0[j];
           const double fj = common * e_over_rho0[j] * vi;
           hsx += fi * dx;
@@ -362,24 +342,14 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
       hg_sum[0][i] = hsx;
       hg_sum[1][i] = hsy;
     }
-    if constexpr (kCount) rp.approaching[i] = approaching;
   }
   return dissipated;
 }
 
 template <bool kHourglass>
 double momentum_pairs(Simulation& sim, RowChunks& chunks, int c) {
-  const bool count = count_approaching(sim.step);
-  if (sim.reference.uniform.all) {
-    return count ? momentum_pairs_of<kHourglass, true, true, false>(sim, chunks, c)
-                 : momentum_pairs_of<kHourglass, false, true, false>(sim, chunks, c);
-  }
-  if (!sim.reference.hp.empty()) {
-    return count ? momentum_pairs_of<kHourglass, true, false, true>(sim, chunks, c)
-                 : momentum_pairs_of<kHourglass, false, false, true>(sim, chunks, c);
-  }
-  return count ? momentum_pairs_of<kHourglass, true, false, false>(sim, chunks, c)
-               : momentum_pairs_of<kHourglass, false, false, false>(sim, chunks, c);
+  return sim.reference.uniform.all ? momentum_pairs_of<kHourglass, true>(sim, chunks, c)
+                                   : momentum_pairs_of<kHourglass, false>(sim, chunks, c);
 }
 
 // Momentum loop, pass 2 for chunk c, per particle: the own share
@@ -392,8 +362,7 @@ template <bool kHourglass>
 double accelerations_per_particle(Simulation& sim, RowChunks& chunks, int c) {
   Particles& p = sim.particles;
   ReferencePairs& rp = sim.reference;
-  const double *Pxx = rp.px.data(), *Pxy = rp.py.data();
-  const double *Pyx = rp.pyx.data(), *Pyy = rp.pyy.data();
+  const double* pv = rp.pv.data();  // V0 P: xx, xy, yx, yy
   const double *sgx = rp.sgx.data(), *sgy = rp.sgy.data();
   const double* rho0 = p.rho0.data();
   const double* const sums = rp.sums.data();
@@ -410,8 +379,8 @@ double accelerations_per_particle(Simulation& sim, RowChunks& chunks, int c) {
   for (std::size_t i = lo; i < hi; ++i) {
     const double inv_rho0 = 1.0 / rho0[i];
     const double hx = kHourglass ? hg_sum[0][i] : 0.0, hy = kHourglass ? hg_sum[1][i] : 0.0;
-    ax[i] = hx + inv_rho0 * (Pxx[i] * sgx[i] + Pxy[i] * sgy[i] + sums[4 * i]);
-    ay[i] = hy + inv_rho0 * (Pyx[i] * sgx[i] + Pyy[i] * sgy[i] + sums[4 * i + 1]);
+    ax[i] = hx + inv_rho0 * (pv[4 * i] * sgx[i] + pv[4 * i + 1] * sgy[i] + sums[4 * i]);
+    ay[i] = hy + inv_rho0 * (pv[4 * i + 2] * sgx[i] + pv[4 * i + 3] * sgy[i] + sums[4 * i + 1]);
     ax[i] += sums[4 * i + 2];
     ay[i] += sums[4 * i + 3];
     viscous -= mass[i] * (vx[i] * sums[4 * i + 2] + vy[i] * sums[4 * i + 3]);
@@ -426,11 +395,16 @@ double accelerations_per_particle(Simulation& sim, RowChunks& chunks, int c) {
 // Each pass sums the power it removes [W/m] (hourglass, viscosity).
 template <bool kHourglass>
 double run_stress_and_momentum(Simulation& sim, bool stress, bool momentum) {
-  const Cuts cut = planned_chunks(sim, sim.step);
+  const Cuts cut = planned_chunks(sim);
   RowChunks &f_rows = cut.deformation, &m_rows = cut.momentum;
   auto displace = [&](int c, double&) { displacements(sim, f_rows, c); };
   auto deformation = [&](int c, double&) { deformation_pairs(sim, f_rows, c); };
   auto stresses = [&](int c, double&) { stress_pass(sim, f_rows, c); };
+  // The stress pass leaves the momentum pass's packed state; a momentum
+  // pass on its own copies it first.
+  auto state = [&](int c, double&) {
+    if (!stress) copy_state(sim, f_rows, c);
+  };
   auto momentum_sums = [&](int c, double& s) { s += momentum_pairs<kHourglass>(sim, m_rows, c); };
   auto accelerations = [&](int c, double& s) {
     s += accelerations_per_particle<kHourglass>(sim, m_rows, c);
@@ -439,11 +413,12 @@ double run_stress_and_momentum(Simulation& sim, bool stress, bool momentum) {
       {"displacements", Runs::OverChunks, &f_rows, displace},
       {"deformation gradient", Runs::OverChunks, &f_rows, deformation},
       {"stress", Runs::OverChunks, &f_rows, stresses},
+      {"positions and velocities", Runs::OverChunks, &f_rows, state},
       {"momentum sums", Runs::OverChunks, &m_rows, momentum_sums},
       {"accelerations", Runs::OverChunks, &m_rows, accelerations},
   };
   const std::span<const Pass<double>> passes =
-      std::span(all).subspan(stress ? 0 : 3, (stress ? 3 : 0) + (momentum ? 2 : 0));
+      std::span(all).subspan(stress ? 0 : 3, (stress ? 3 : 0) + (momentum ? 3 : 0));
   const double dissipated = run_passes(passes, f_rows.chunks(), kNeverStop);
   if (stress) gather_largest_j2(sim);
   return dissipated;
@@ -485,7 +460,7 @@ void gather_largest_j2(Simulation& sim) {
 
 TotalLagrangianPasses total_lagrangian_passes(Simulation& sim) {
   const bool hourglass = hourglass_ready(sim);
-  const Cuts cut = planned_chunks(sim, sim.step + 1);  // before the clock advances
+  const Cuts cut = planned_chunks(sim);
   return {cut.deformation, cut.momentum, hourglass};
 }
 

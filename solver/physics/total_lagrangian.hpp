@@ -28,34 +28,41 @@ struct Simulation;
 struct ReferencePairs {
   std::vector<std::uint32_t> rows, j;
   // Corrected gradients of the pair, G_ij = C_i grad0_i W_ij and
-  // G_ji = C_j grad0_j W_ji (kernel_correction.hpp); the loops scale them by
-  // the other end's reference volume.
-  Column<double> gix, giy;  // G_ij
-  Column<double> gjx, gjy;  // G_ji
+  // G_ji = C_j grad0_j W_ji (kernel_correction.hpp), side by side per pair:
+  // g[4 k .. 4 k + 3] = G_ij x, y, G_ji x, y (one cache line for two
+  // pairs; the loops scale them by the other end's reference volume).
+  Column<double> g;
   // W(|X_ij|) / (2 |X_ij|^2), the hourglass control's pair weight, kept
   // only with it; and E / rho0 per particle (Ganzenmueller 2015).
   Column<double> w0;
   Column<double> e_over_rho0;
   Column<double> dw0;  // dW/dr at |X_ij|
-  // V0 P (the first Piola-Kirchhoff stress times the reference volume),
-  // cached per particle: V0 P = [[px, py], [pyx, pyy]]. With the volume in
-  // it, a momentum pair takes V0_j P_j G_ji whole (no volume gathered, four
-  // products fewer: 4 % of the gear's step).
-  Column<double> px, py;
-  Column<double> pyx, pyy;
+  // The artificial viscosity of each pair in its reference form,
+  // Pi_ij dW/dr / r = v (visc_a v - visc_b) with v = min(v_ij . x_ij, 0)
+  // (artificial_viscosity.hpp, reference_viscosity).
+  Column<double> visc_a, visc_b;
+  // V0 P (the first Piola-Kirchhoff stress times the reference volume) per
+  // particle, side by side: pv[4 i .. 4 i + 3] = xx, xy, yx, yy. With the
+  // volume in it, a momentum pair takes V0_j P_j G_ji whole (no volume
+  // gathered, four products fewer: 4 % of the gear's step).
+  Column<double> pv;
+  // x, y, vx, vy per particle, side by side (4 i + q), copied by the stress
+  // pass for the momentum pass's gathers: one line a neighbour instead of
+  // four, and fewer array addresses than registers (docs/speed-accuracy.md,
+  // "The viscosity at the reference configuration").
+  Column<double> state;
   Column<double> vol0;  // reference volume m/rho0, per particle
   // Smoothing length per particle, for graded particles only (empty when
   // every particle has the same h): a pair takes h_ij = (h_i + h_j) / 2.
   Column<double> hp;
-  // One mass and one sound speed for every particle (a scene of one
-  // material and one spacing: the seed paper's gear, the plate). The momentum
-  // pass then takes them as constants, two gathers a pair fewer (3 % of the
-  // gear's step). The same arithmetic (0.5 (c + c) is c), so the state is
+  // One mass for every particle (a scene of one material and one spacing:
+  // the seed paper's gear, the plate). The momentum pass then takes it as a
+  // constant, a gather a pair fewer. The same arithmetic, so the state is
   // the same bit for bit as with the gathers. (The F pass ran slower with
   // its volume as a constant, and gathers it.)
   struct Uniform {
     bool all = false;
-    double mass = 0.0, cs = 0.0;
+    double mass = 0.0;
   };
   Uniform uniform;
   Column<double> ux, uy;  // displacement x - X, per particle, refreshed each step
@@ -71,18 +78,11 @@ struct ReferencePairs {
   Column<double> sums;
   // Hourglass accelerations.
   Column<double> hg_ax, hg_ay;
-  // The threads' rows, cut twice: the F pass's pairs cost the same
-  // everywhere, the momentum pass's do not (the viscosity's division acts on
-  // approaching pairs only). The deformation cut serves the F and stress
+  // The threads' rows, cut twice, once for each pair pass's own spill
+  // width and cost per row. The deformation cut serves the F and stress
   // passes, the momentum cut the momentum pass, the accelerations and the
   // kicks and drift, so that each pair pass ends evenly at its barrier.
   RowChunks deformation_chunks, momentum_chunks;
-  // Per row: its pairs whose viscosity acted (v_ij . x_ij < 0) in the last
-  // momentum pass, which cost that pass about twice a separating pair; the
-  // chunks are cut again from them every few thousand steps, at the step
-  // planned_step.
-  Column<std::uint32_t> approaching;
-  long planned_step = -1;
   // Per chunk: the largest J2 of its rows and where (stress pass), gathered
   // into Simulation::largest_j2; a cache line each, as each thread writes
   // its own every step.

@@ -6,6 +6,7 @@
 
 #include "solver/core/setup_progress.hpp"
 #include "solver/core/simulation.hpp"
+#include "solver/physics/artificial_viscosity.hpp"
 #include "solver/physics/kernel_correction.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 
@@ -126,7 +127,7 @@ void build_pairs(Simulation& sim, const ReferencePairs::Basis& basis) {
 
     // G_ij = -w C_i phi(d) and G_ji = -w C_j phi(-d), d = X_i - X_j, and the
     // per-particle sums of V0_j G_ij (in the same ascending order).
-    for (auto* v : {&rp.gix, &rp.giy, &rp.gjx, &rp.gjy}) v->assign(m, 0.0);
+    rp.g.assign(4 * m, 0.0);
     rp.sgx.assign(n, 0.0);
     rp.sgy.assign(n, 0.0);
     for (std::size_t i = 0; i < n; ++i) {
@@ -135,15 +136,16 @@ void build_pairs(Simulation& sim, const ReferencePairs::Basis& basis) {
         const double dx = p.x0[i] - p.x0[j], dy = p.y0[i] - p.y0[j];
         const double r = std::sqrt(dx * dx + dy * dy);
         const double dw_r = rp.dw0[k] / r;  // = -w
-        corrected_gradient(corr[i], dw_r, dx, dy, rp.gix[k], rp.giy[k]);
-        corrected_gradient(corr[j], dw_r, -dx, -dy, rp.gjx[k], rp.gjy[k]);
-        rp.sgx[i] += rp.vol0[j] * rp.gix[k];
-        rp.sgy[i] += rp.vol0[j] * rp.giy[k];
-        rp.sgx[j] += rp.vol0[i] * rp.gjx[k];
-        rp.sgy[j] += rp.vol0[i] * rp.gjy[k];
+        double* const g = &rp.g[4 * k];     // G_ij, G_ji
+        corrected_gradient(corr[i], dw_r, dx, dy, g[0], g[1]);
+        corrected_gradient(corr[j], dw_r, -dx, -dy, g[2], g[3]);
+        rp.sgx[i] += rp.vol0[j] * g[0];
+        rp.sgy[i] += rp.vol0[j] * g[1];
+        rp.sgx[j] += rp.vol0[i] * g[2];
+        rp.sgy[j] += rp.vol0[i] * g[3];
       }
     }
-    // Divided by V0_i: the step keeps P times the volume (ReferencePairs::px).
+    // Divided by V0_i: the step keeps P times the volume (ReferencePairs::pv).
     for (std::size_t i = 0; i < n; ++i) {
       rp.sgx[i] /= rp.vol0[i];
       rp.sgy[i] /= rp.vol0[i];
@@ -152,14 +154,36 @@ void build_pairs(Simulation& sim, const ReferencePairs::Basis& basis) {
   rp.basis = basis;
 }
 
+// Each pair's artificial viscosity at the reference configuration
+// (artificial_viscosity.hpp): from the method's constants and the
+// materials, which a run may set after the pairs were built.
+void reference_viscosities(Simulation& sim) {
+  const Particles& p = sim.particles;
+  ReferencePairs& rp = sim.reference;
+  const ArtificialViscosity& av = sim.method.viscosity;
+  rp.visc_a.assign(rp.pairs(), 0.0);
+  rp.visc_b.assign(rp.pairs(), 0.0);
+  for (std::size_t i = 0; i < p.n; ++i) {
+    for (std::uint32_t k = rp.rows[i]; k < rp.rows[i + 1]; ++k) {
+      const std::uint32_t j = rp.j[k];
+      const double dx = p.x0[i] - p.x0[j], dy = p.y0[i] - p.y0[j];
+      const double hij = rp.hp.empty() ? sim.h() : 0.5 * (rp.hp[i] + rp.hp[j]);
+      const ReferenceViscosity v =
+          reference_viscosity(av, rp.dw0[k], std::sqrt(dx * dx + dy * dy), hij,
+                              0.5 * (p.cs[i] + p.cs[j]), 0.5 * (p.rho0[i] + p.rho0[j]));
+      rp.visc_a[k] = v.a;
+      rp.visc_b[k] = v.b;
+    }
+  }
+}
+
 // The per-particle state of the step as a fresh run starts it: zero sums,
 // no counts of approaching pairs, chunks not yet cut.
 void start_state(Simulation& sim) {
   ReferencePairs& rp = sim.reference;
   const std::size_t n = sim.particles.n;
-  for (auto* v : {&rp.px, &rp.py, &rp.pyx, &rp.pyy, &rp.ux, &rp.uy}) v->assign(n, 0.0);
-  rp.sums.assign(4 * n, 0.0);
-  rp.approaching.assign(n, 0);
+  for (auto* v : {&rp.ux, &rp.uy}) v->assign(n, 0.0);
+  for (auto* v : {&rp.pv, &rp.state, &rp.sums}) v->assign(4 * n, 0.0);
   rp.e_over_rho0.assign(rp.basis.keep_w ? n : 0, 0.0);
   for (std::size_t i = 0; i < rp.e_over_rho0.size(); ++i) {
     rp.e_over_rho0[i] = sim.material_of(i).E / sim.particles.rho0[i];
@@ -170,15 +194,13 @@ void start_state(Simulation& sim) {
   rp.uniform = {};
   if (n > 0) {
     bool all = true;
-    for (std::size_t i = 0; i < n; ++i) {
-      all = all && p.mass[i] == p.mass[0] && p.cs[i] == p.cs[0];
-    }
-    rp.uniform = {all && rp.hp.empty(), p.mass[0], p.cs[0]};
+    for (std::size_t i = 0; i < n; ++i) all = all && p.mass[i] == p.mass[0];
+    rp.uniform = {all, p.mass[0]};
   }
+  reference_viscosities(sim);
   // Planned for these rows at the first pair loop.
   rp.deformation_chunks = RowChunks();
   rp.momentum_chunks = RowChunks();
-  rp.planned_step = -1;
   rp.chunk_peaks.clear();
   rp.lambda_body.clear();
   rp.mu_body.clear();
