@@ -317,6 +317,11 @@ TEST_F(ScaleOutPostgres, AFrozenWorkerNeverTouchesAJobItLost) {
   const json done = wait_final(c, id);
   EXPECT_EQ(done.at("status"), "successful") << done.dump();
   EXPECT_EQ(done.at("attempts"), 2) << done.dump();
+  // The worker renames its attempt's directory just after it records the
+  // outcome; a client that asks in between gets the files all the same,
+  // because the API publishes a recorded attempt when first asked
+  // (attempt_dirs.cpp). Asked first, as a user would.
+  ASSERT_EQ(c.get("/jobs/" + id + "/files/summary.json").status, 200u);
   const fs::path published = results_.path() / id;
   const auto before = snapshot(published);
   ASSERT_TRUE(before.count("summary.json") && before.count("results.h5") &&
@@ -413,6 +418,9 @@ TEST_F(ScaleOutPostgres, RandomKillsLoseNoJobAndRunNoneTwice) {
     EXPECT_EQ(db.value("SELECT attempts FROM jobs WHERE id = '" + id + "'"),
               std::to_string(runs[id]))
         << id;
+    // Through the API first, which publishes a recorded attempt when
+    // asked (the worker's own rename may still be under way).
+    EXPECT_EQ(c.get("/jobs/" + id + "/files/summary.json").status, 200u) << id;
     EXPECT_TRUE(fs::exists(results_.path() / id / "summary.json")) << id;
   }
 }
