@@ -69,6 +69,9 @@ TEST(ServerOperations, RetentionDeletesEndedJobsAndTheirFiles) {
   auto c = server.client();
   const std::string id = submit(c, tiny_job());
   EXPECT_EQ(wait_final(c, id).at("status"), "successful");
+  // Asked through the API first: it publishes a recorded attempt whose
+  // worker has not yet renamed its directory (attempt_dirs.cpp).
+  ASSERT_EQ(c.get("/jobs/" + id + "/files/summary.json").status, 200u);
   ASSERT_TRUE(fs::exists(server.data() / "jobs" / id / "summary.json"));
   const auto deadline = Clock::now() + std::chrono::seconds(30);
   while (c.get("/jobs/" + id).status != 404 && Clock::now() < deadline) {
