@@ -171,7 +171,6 @@ void build_smoothing(Simulation& sim) {
   st.smooth_offset_y.assign(p.n, 0.0);
   st.smooth_centre_x.assign(p.n, 0.0);
   st.smooth_centre_y.assign(p.n, 0.0);
-  std::vector<std::uint32_t> incoming(p.n, 0);
   for (std::size_t i = 0; i < p.n; ++i) {
     double total = 0.0;
     for (const auto& [k, w] : rows[i]) total += w;
@@ -181,7 +180,6 @@ void build_smoothing(Simulation& sim) {
       st.smooth_w.push_back(w / total);
       mx += w / total * p.x0[k];
       my += w / total * p.y0[k];
-      ++incoming[k];
     }
     if (!rows[i].empty()) {
       st.smooth_offset_x[i] = p.x0[i] - mx;
@@ -191,19 +189,8 @@ void build_smoothing(Simulation& sim) {
     }
     st.smooth_rows[i + 1] = static_cast<std::uint32_t>(st.smooth_k.size());
   }
-  // The transposed table: per receiver k, its sources i and W_ki.
-  st.spread_rows.assign(p.n + 1, 0);
-  for (std::size_t k = 0; k < p.n; ++k) st.spread_rows[k + 1] = st.spread_rows[k] + incoming[k];
-  st.spread_i.assign(st.smooth_k.size(), 0);
-  st.spread_w.assign(st.smooth_k.size(), 0.0);
-  std::vector<std::uint32_t> fill(st.spread_rows.begin(), st.spread_rows.end() - 1);
-  for (std::size_t i = 0; i < p.n; ++i) {
-    for (std::uint32_t e = st.smooth_rows[i]; e < st.smooth_rows[i + 1]; ++e) {
-      const std::uint32_t slot = fill[st.smooth_k[e]]++;
-      st.spread_i[slot] = static_cast<std::uint32_t>(i);
-      st.spread_w[slot] = st.smooth_w[e];
-    }
-  }
+  st.spread_ax.assign(p.n, 0.0);
+  st.spread_ay.assign(p.n, 0.0);
   st.smoothing_built = true;
 }
 
@@ -280,20 +267,37 @@ void add_contact_accelerations(Simulation& sim, std::size_t lo, std::size_t hi) 
     }
     return;
   }
-  const ContactState& st = sim.contact_state;
-  for (std::size_t k = lo; k < hi; ++k) {
-    double fx = 0.0, fy = 0.0;
-    for (std::uint32_t e = st.spread_rows[k]; e < st.spread_rows[k + 1]; ++e) {
-      const std::uint32_t i = st.spread_i[e];
-      const double w = st.spread_w[e];
+  // Only sources that touch have a force or a couple, and every source
+  // that touches is a candidate (the others hold zeros, prepare_contact):
+  // each thread walks the candidates in order and adds the share of its
+  // own receivers. Per receiver the shares arrive in ascending source
+  // order, as a table per receiver gave them (the same bits), at a few
+  // touching sources a step instead of every receiver's table (4 % of the
+  // gear's step; docs/speed-accuracy.md, twelfth round).
+  ContactState& st = sim.contact_state;
+  double* const fx = st.spread_ax.data();
+  double* const fy = st.spread_ay.data();
+  std::fill(fx + lo, fx + hi, 0.0);
+  std::fill(fy + lo, fy + hi, 0.0);
+  for (const std::uint32_t i : st.candidates) {
+    if (p.contact_ax[i] == 0.0 && p.contact_ay[i] == 0.0 && st.couple_c[i] == 0.0 &&
+        st.couple_s[i] == 0.0) {
+      continue;
+    }
+    for (std::uint32_t e = st.smooth_rows[i]; e < st.smooth_rows[i + 1]; ++e) {
+      const std::uint32_t k = st.smooth_k[e];
+      if (k < lo || k >= hi) continue;
+      const double w = st.smooth_w[e];
       // The share of the force, and of the couple M dtheta/dx_k =
       // w M (C z x A_k - S A_k) / (C^2 + S^2).
       const double ax = p.x0[k] - st.smooth_centre_x[i], ay = p.y0[k] - st.smooth_centre_y[i];
-      fx += w * (p.mass[i] * p.contact_ax[i] - st.couple_c[i] * ay - st.couple_s[i] * ax);
-      fy += w * (p.mass[i] * p.contact_ay[i] + st.couple_c[i] * ax - st.couple_s[i] * ay);
+      fx[k] += w * (p.mass[i] * p.contact_ax[i] - st.couple_c[i] * ay - st.couple_s[i] * ax);
+      fy[k] += w * (p.mass[i] * p.contact_ay[i] + st.couple_c[i] * ax - st.couple_s[i] * ay);
     }
-    p.ext_ax[k] += fx / p.mass[k];
-    p.ext_ay[k] += fy / p.mass[k];
+  }
+  for (std::size_t k = lo; k < hi; ++k) {
+    p.ext_ax[k] += fx[k] / p.mass[k];
+    p.ext_ay[k] += fy[k] / p.mass[k];
   }
 }
 

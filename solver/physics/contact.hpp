@@ -71,13 +71,14 @@ struct ContactState {
   std::size_t prepared_build = 0;  // the list's build these belong to
   // Surface smoothing (contact_smoothing.hpp), built once per run from the
   // reference configuration: per source i its receivers k and weights W_ki
-  // (rows sum to one), the transposed table per receiver, and the offset
-  // X_i - sum_k W_ki X_k that puts the smoothed point back on particle i.
+  // (rows sum to one), and the offset X_i - sum_k W_ki X_k that puts the
+  // smoothed point back on particle i.
   bool smoothing_built = false;
   std::vector<std::uint32_t> smooth_rows, smooth_k;
   std::vector<double> smooth_w;
-  std::vector<std::uint32_t> spread_rows, spread_i;
-  std::vector<double> spread_w;
+  // Per receiver, this step: the sum of its shares (add_contact_accelerations;
+  // each thread its own rows).
+  Column<double> spread_ax, spread_ay;
   std::vector<double> smooth_offset_x, smooth_offset_y;
   // Each surface particle's log-moment Lambda (contact_near_field.hpp).
   std::vector<double> log_moment;
