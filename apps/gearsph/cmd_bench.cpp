@@ -652,7 +652,7 @@ void bench_full_case(const BenchOptions& o, json& report) {
   const double full_s = r.wall_s / fraction;
   std::printf(
       "4. Paper's gear case: %zu particles, %lld steps, 2 threads: %.1f s wall, %.1f s "
-      "CPU%s  (target < 120 s, stretch < 60 s)\n",
+      "CPU%s  (target < 60 s, stretch < 30 s)\n",
       pj.scene.sim.particles.n, static_cast<long long>(r.steps_done), r.wall_s, cpu_s,
       o.quick ? fmt(" -> full case %.0f s (scaled from 2 %%)", full_s).c_str() : "");
   report["full_case"] = {{"particles", pj.scene.sim.particles.n},
