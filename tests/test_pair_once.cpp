@@ -168,11 +168,11 @@ TEST(PairOnce, ArraysWrittenByRowsOwnWholeCacheLines) {
   forces(sim);
   const Particles& p = sim.particles;
   const ReferencePairs& rp = sim.reference;
-  const Column<double>* arrays[] = {&p.x,      &p.y,      &p.vx,   &p.vy,      &p.ax,     &p.ay,
-                                    &p.rho,    &p.p,      &p.sxx,  &p.syy,     &p.sxy,    &p.szz,
-                                    &p.fxx,    &p.fxy,    &p.fyx,  &p.fyy,     &p.ext_ax, &p.ext_ay,
-                                    &rp.pv,    &rp.state, &rp.ux,  &rp.uy,     &rp.sums,  &rp.hg_ax,
-                                    &rp.hg_ay, &rp.g,     &rp.dw0, &rp.visc_a, &rp.visc_b};
+  const Column<double>* arrays[] = {&p.x,   &p.y,      &p.vx,      &p.vy,     &p.ax,     &p.ay,
+                                    &p.rho, &p.p,      &p.sxx,     &p.syy,    &p.sxy,    &p.szz,
+                                    &p.fxx, &p.fxy,    &p.fyx,     &p.fyy,    &p.ext_ax, &p.ext_ay,
+                                    &rp.pv, &rp.state, &rp.u,      &rp.sums,  &rp.hg_ax, &rp.hg_ay,
+                                    &rp.g,  &rp.dw0,   &rp.visc_a, &rp.visc_b};
   std::vector<std::pair<std::uintptr_t, std::uintptr_t>> lines;
   for (const Column<double>* a : arrays) {
     ASSERT_FALSE(a->empty());

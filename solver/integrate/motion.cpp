@@ -214,12 +214,12 @@ void kick_drift_particles(Simulation& sim, double dt, std::size_t lo, std::size_
       [&](std::size_t a, std::size_t b, const Motion& m) { open_run(k, m, a, b, dt, t); });
   // The total-Lagrangian F loop reads displacements u = x - X (two gathers
   // a neighbour instead of four); written here, where x is at hand.
-  if (sim.reference.ux.size() == n) {
-    double *ux = sim.reference.ux.data(), *uy = sim.reference.uy.data();
+  if (sim.reference.u.size() == 4 * n) {
+    double* const u = sim.reference.u.data();
 #pragma omp simd
     for (std::size_t i = lo; i < hi; ++i) {
-      ux[i] = k.x[i] - k.x0[i];
-      uy[i] = k.y[i] - k.y0[i];
+      u[4 * i] = k.x[i] - k.x0[i];
+      u[4 * i + 1] = k.y[i] - k.y0[i];
     }
   }
   // NaN fails every comparison, so a non-finite position counts as outside.

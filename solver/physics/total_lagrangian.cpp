@@ -73,8 +73,8 @@ void displacements(Simulation& sim, const RowChunks& chunks, int c) {
   const Particles& p = sim.particles;
   ReferencePairs& rp = sim.reference;
   for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
-    rp.ux[i] = p.x[i] - p.x0[i];
-    rp.uy[i] = p.y[i] - p.y0[i];
+    rp.u[4 * i] = p.x[i] - p.x0[i];
+    rp.u[4 * i + 1] = p.y[i] - p.y0[i];
   }
 }
 
@@ -87,22 +87,22 @@ void deformation_pairs(Simulation& sim, RowChunks& chunks, int c) {
   const std::uint32_t* rows = rp.rows.data();
   const std::uint32_t* jj = rp.j.data();
   const double* g = rp.g.data();  // G_ij x, y, G_ji x, y
-  const double* vol0 = rp.vol0.data();
-  const double *ux = rp.ux.data(), *uy = rp.uy.data();
+  const double* u = rp.u.data();  // ux, uy, V0
   // M = F - I, xx, xy, yx, yy side by side (ReferencePairs::sums).
   double* const sums = sim.reference.sums.data();
   const std::size_t lo = chunks.begin(c), hi = chunks.end(c);
   std::fill(sums + 4 * lo, sums + 4 * hi, 0.0);
   double* const spill = chunks.spill_grouped(c);
   for (std::size_t i = lo; i < hi; ++i) {
-    const double uxi = ux[i], uyi = uy[i], vi = vol0[i];
+    const double uxi = u[4 * i], uyi = u[4 * i + 1], vi = u[4 * i + 2];
     // Row i continues the sums its pairs with j < i began.
     double mxx = sums[4 * i], mxy = sums[4 * i + 1], myx = sums[4 * i + 2], myy = sums[4 * i + 3];
     auto pairs = [&](std::uint32_t k0, std::uint32_t k1, double* to, std::size_t base) {
       for (std::uint32_t k = k0; k < k1; ++k) {
         const std::uint32_t j = jj[k];
-        const double dux = ux[j] - uxi, duy = uy[j] - uyi;
-        const double vj = vol0[j];
+        const double* const uj = u + 4 * j;
+        const double dux = uj[0] - uxi, duy = uj[1] - uyi;
+        const double vj = uj[2];
         const double ax = vj * g[4 * k], ay = vj * g[4 * k + 1];
         mxx += dux * ax;
         mxy += dux * ay;

@@ -65,7 +65,10 @@ struct ReferencePairs {
     double mass = 0.0;
   };
   Uniform uniform;
-  Column<double> ux, uy;  // displacement x - X, per particle, refreshed each step
+  // Per particle, side by side (4 i + q): the displacement x - X (refreshed
+  // each step by the drift) and the reference volume V0, the F pass's
+  // gathers of a neighbour in one line (4 i + 3 unused).
+  Column<double> u;
   // sum_j V0_j G_ij / V0_i over all neighbours, per particle: P_i is
   // constant over i's pairs, so its share of the momentum sum is V0_i P_i
   // times this, with no per-pair work.
@@ -132,7 +135,7 @@ struct TotalLagrangianPasses {
 // Plans the chunks for sim.threads (once per run); call outside the region.
 TotalLagrangianPasses total_lagrangian_passes(Simulation& sim);
 // Pass 1: the sums M of F = I + M, from the displacements u = x - X that
-// the drift left in sim.reference.ux, uy (integrate/motion.hpp).
+// the drift left in sim.reference.u (integrate/motion.hpp).
 void deformation_sums(Simulation& sim, TotalLagrangianPasses& tl, int c);
 // Pass 2: F, P, the Cauchy stress and density per particle, the turned
 // contact normals of surface particles with contact candidates, and the

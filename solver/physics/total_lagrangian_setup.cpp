@@ -182,8 +182,8 @@ void reference_viscosities(Simulation& sim) {
 void start_state(Simulation& sim) {
   ReferencePairs& rp = sim.reference;
   const std::size_t n = sim.particles.n;
-  for (auto* v : {&rp.ux, &rp.uy}) v->assign(n, 0.0);
-  for (auto* v : {&rp.pv, &rp.state, &rp.sums}) v->assign(4 * n, 0.0);
+  for (auto* v : {&rp.u, &rp.pv, &rp.state, &rp.sums}) v->assign(4 * n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) rp.u[4 * i + 2] = rp.vol0[i];
   rp.e_over_rho0.assign(rp.basis.keep_w ? n : 0, 0.0);
   for (std::size_t i = 0; i < rp.e_over_rho0.size(); ++i) {
     rp.e_over_rho0[i] = sim.material_of(i).E / sim.particles.rho0[i];
