@@ -42,8 +42,9 @@ usage:
       speed side by side: plate and gear throughput at 1 and 2 threads (best of
       --repeats), PySPH's plate (run by --python with bench/pysph_plate.py or
       --pysph-script) bare and end to end, cost per particle-step 1e3..1e6,
-      memory, the paper's full case, and a study of N (16) paper's cases through
-      gearsph serve (--quick: their first 2 ms)
+      memory, the paper's full case (the default beside the paper's lattice),
+      and a study of N (16) paper's cases through gearsph serve (--quick:
+      their first 2 ms)
   gearsph bench pareto --out DIR [--quick] [--threads N] [--cases plate,hertz,gear]
       error against cost: plate (kernel, spacing, h/dx, CFL, UL/TL), Hertz p0
       and gear root bending (kernel, spacing); CSV + PNG per case
