@@ -30,15 +30,14 @@ inline double monaghan_pi(const ArtificialViscosity& av, double h, double vr, do
 //   q = r^2 + eta^2,
 // with the distance and density of its denominator taken at the reference
 // configuration (|X_ij|, rho0): a distance does not change when the body
-// turns, only when it strains, so the two differ by the strain (1e-3 in a
-// gear; the kernel's slope is the reference one already). What is left is
-// two constants per pair and a polynomial in v.x:
+// turns, only when it strains, so the two differ by a few times the strain
+// (1e-3 in a gear; the kernel's slope is the reference one already). What
+// is left is two constants per pair and a polynomial in v.x:
 //   Pi_ij dW/dr / r = v (a v - b),  v = min(v_ij . x_ij, 0),
 // with no square root, division or branch in the step, and every pair the
-// same cost (docs/speed-accuracy.md, "The viscosity at the reference
-// configuration"). Separating pairs (v.x >= 0) are not damped. The
-// stable-step estimate's damping (integrate/stability.cpp) is its linear
-// part, b, exactly.
+// same cost (docs/speed-accuracy.md, twelfth round). Separating pairs
+// (v.x >= 0) are not damped. The stable-step estimate's damping
+// (integrate/stability.cpp) is its linear part, b, exactly.
 struct ReferenceViscosity {
   double a = 0.0;  // beta h^2 dW/dr / (q^2 rho0 r)
   double b = 0.0;  // alpha c h dW/dr / (q rho0 r)

@@ -49,7 +49,7 @@ struct ReferencePairs {
   // x, y, vx, vy per particle, side by side (4 i + q), copied by the stress
   // pass for the momentum pass's gathers: one line a neighbour instead of
   // four, and fewer array addresses than registers (docs/speed-accuracy.md,
-  // "The viscosity at the reference configuration").
+  // twelfth round).
   Column<double> state;
   Column<double> vol0;  // reference volume m/rho0, per particle
   // Smoothing length per particle, for graded particles only (empty when
