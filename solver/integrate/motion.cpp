@@ -212,8 +212,9 @@ void kick_drift_particles(Simulation& sim, double dt, std::size_t lo, std::size_
   for_each_motion_run(
       p, sim.motions.data(), lo, hi,
       [&](std::size_t a, std::size_t b, const Motion& m) { open_run(k, m, a, b, dt, t); });
-  // The total-Lagrangian F loop reads displacements u = x - X (two gathers
-  // a neighbour instead of four); written here, where x is at hand.
+  // The total-Lagrangian F loop reads displacements u = x - X beside V0
+  // (one line a neighbour, ReferencePairs::u); written here, where x is at
+  // hand.
   if (sim.reference.u.size() == 4 * n) {
     double* const u = sim.reference.u.data();
 #pragma omp simd

@@ -178,7 +178,7 @@ void reference_viscosities(Simulation& sim) {
 }
 
 // The per-particle state of the step as a fresh run starts it: zero sums,
-// no counts of approaching pairs, chunks not yet cut.
+// the viscosity's pair constants, chunks not yet cut.
 void start_state(Simulation& sim) {
   ReferencePairs& rp = sim.reference;
   const std::size_t n = sim.particles.n;
