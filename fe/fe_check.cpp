@@ -56,6 +56,12 @@ nlohmann::json mesh_json(const GearFeResult& r, double face_width_m) {
           {"fillet_compression_at_iso30_Pa", s.compression.at_iso30_Pa},
           {"fillet_stress_at_iso30_Pa", s.tension.at_iso30_Pa},
           {"max_von_mises_Pa", vm_max},
+          {"load_displacement_m", r.load_displacement_m},
+          // Per unit line load F_n / b [um mm/N]: the pinion's share of the
+          // mesh compliance, comparable with the static check's
+          // mesh_compliance (docs/gears.md).
+          {"pinion_compliance_at_load_um_mm_per_N",
+           1e9 * r.load_displacement_m / (geometry::norm(r.load.applied_N) / face_width_m)},
           {"applied_force_N", xy(r.load.applied_N)},
           {"reaction_total_N", xy(r.reaction_N)},
           // |reaction + load| / |load|: the solve's equilibrium, ~1e-6 (the
@@ -198,11 +204,13 @@ nlohmann::json load_json(const CheckCase& k, const GearLoadPatch& load, double f
 // coarse-fine pair.
 void add_convergence(const nlohmann::json& meshes, nlohmann::json& s) {
   const nlohmann::json& top = meshes.back();
+  std::vector<std::string> keys = fillet_keys();
+  keys.push_back("pinion_compliance_at_load_um_mm_per_N");
   nlohmann::json convergence;
   nlohmann::json sizes = nlohmann::json::array();
   for (const nlohmann::json& m : meshes) sizes.push_back(m.at("fillet_size_m"));
   convergence["fillet_sizes_m"] = sizes;
-  for (const std::string& key : fillet_keys()) {
+  for (const std::string& key : keys) {
     nlohmann::json values = nlohmann::json::array(), diffs = nlohmann::json::array();
     const double ref_v = top.at(key).get<double>();
     for (const nlohmann::json& m : meshes) {
@@ -215,7 +223,7 @@ void add_convergence(const nlohmann::json& meshes, nlohmann::json& s) {
   if (meshes.size() < 2) return;
   const nlohmann::json& coarse = meshes[meshes.size() - 2];
   nlohmann::json diff;
-  for (const std::string& key : fillet_keys()) {
+  for (const std::string& key : keys) {
     const double fine = top.at(key).get<double>();
     diff[key] = {{"coarse", coarse.at(key)},
                  {"fine", fine},
@@ -295,7 +303,7 @@ nlohmann::json run_fe_check(const nlohmann::json& job, const std::filesystem::pa
   s["reference_fillet_size_m"] = ref.sizes.fillet;
   for (const std::string& key : fillet_keys()) s[key] = top.at(key);
   for (const char* key : {"fillet_tension_peak_angle_deg", "nodes", "elements", "reaction_total_N",
-                          "applied_force_N"}) {
+                          "applied_force_N", "pinion_compliance_at_load_um_mm_per_N"}) {
     s[key] = top.at(key);
   }
   s["load_radius_m"] = ref.load.radius_m;
@@ -373,6 +381,23 @@ nlohmann::json fe_comparison(const nlohmann::json& sph_summary, const nlohmann::
   block["iso_sigma_F0_Pa"] = fe.at("iso_6336_3").at("sigma_F0_Pa");
   if (fe.contains("image_range_Pa")) block["image_range_Pa"] = fe.at("image_range_Pa");
   block["coarse_fine_difference"] = fe.value("coarse_fine_difference", nlohmann::json());
+  // The pinion's compliance beside the static check's split of the mesh
+  // compliance: FE's includes the pinion's Hertz indentation, which the SPH
+  // split counts in its contact part, with the rack's (docs/gears.md).
+  if (fe.contains("pinion_compliance_at_load_um_mm_per_N")) {
+    nlohmann::json entry = {
+        {"fe_pinion_at_load", fe.at("pinion_compliance_at_load_um_mm_per_N")},
+        {"note",
+         "FE: the tooth, the rim and the pinion's Hertz indentation, the load's displacement; "
+         "SPH: the pinion's smoothed contact point (tooth and rim), and the contact part "
+         "(the near field and spring of both bodies)"}};
+    if (check && check->contains("mesh_compliance") && (*check)["mesh_compliance"].is_object()) {
+      const nlohmann::json& mc = (*check)["mesh_compliance"];
+      entry["sph_pinion"] = mc.value("pinion_um_mm_per_N", 0.0);
+      entry["sph_contact"] = mc.value("contact_um_mm_per_N", 0.0);
+    }
+    block["pinion_compliance_um_mm_per_N"] = entry;
+  }
   return block;
 }
 

@@ -355,6 +355,15 @@ GearFeResult solve_gear_fe(const GearFeCase& c, const GearMeshSizes& sizes, doub
   out.solve_s = out.solution.wall_s;
   out.reaction_N = c.face_width_m * out.solution.reaction;
   out.mesh = std::move(model.mesh);
+  // The load's work-conjugate displacement: sum f_k . u_k / |sum f_k|.
+  double work = 0.0;
+  Point total{0.0, 0.0};
+  for (std::size_t k = 0; k < model.nodal_forces.size(); ++k) {
+    const Point f = model.nodal_forces[k], u = out.solution.displacement[k];
+    work += f.x * u.x + f.y * u.y;
+    total = total + f;
+  }
+  out.load_displacement_m = work / geometry::norm(total);
   stress_on_fillets(boundary, out);
   return out;
 }

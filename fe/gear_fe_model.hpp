@@ -90,7 +90,13 @@ struct GearFeResult {
   gear::ToothFillets fillets;
   gear::FilletStress stress;
   GearLoadPatch load;
-  Point reaction_N;              // total support reaction, per gear
+  Point reaction_N;  // total support reaction, per gear
+  // The load's displacement, work-conjugate to the Hertz pressure (sum of
+  // f . u over the loaded nodes, over the force) [m]: the tooth's bending
+  // and shear, the rim's, and the pinion's side of the Hertz indentation,
+  // from the held radius. Per unit line load it is the pinion's share of the
+  // mesh compliance that the SPH static check splits (docs/gears.md).
+  double load_displacement_m = 0.0;
   double curve_to_mesh_m = 0.0;  // largest distance of a fillet sample from the mesh boundary
   double mesh_s = 0.0, solve_s = 0.0;
 };

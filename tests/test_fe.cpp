@@ -434,8 +434,21 @@ TEST(FeGear, FilletStressAgainstIsoAtPitchHpstcAndTip) {
   FeCheckOptions o;
   o.fillet_sizes_m = {0.4e-3, 0.2e-3};
   o.images = false;
+  double compliance_below = 0.0;
   for (const char* point : {"pitch", "hpstc", "tip"}) {
     const nlohmann::json s = run_fe_check(gear_job(point), dir.path() / point, o);
+    // The pinion's compliance at the load's centre: converged between the
+    // two meshes, and larger the higher the load sits on the tooth (its
+    // lever arm, and so its bending, grows).
+    const double compliance = s.at("pinion_compliance_at_load_um_mm_per_N").get<double>();
+    const double compliance_diff = s.at("coarse_fine_difference")
+                                       .at("pinion_compliance_at_load_um_mm_per_N")
+                                       .at("relative_difference");
+    std::printf("%-5s pinion compliance at the load %.4f um mm/N, coarse-fine %+.3f %%\n", point,
+                compliance, 100.0 * compliance_diff);
+    EXPECT_GT(compliance, compliance_below) << point;
+    EXPECT_LT(std::abs(compliance_diff), 0.02) << point;
+    compliance_below = compliance;
     const nlohmann::json& iso = s.at("iso_6336_3");
     const double peak = s.at("fillet_tension_peak_Pa").get<double>();
     const double at30 = s.at("fillet_stress_at_iso30_Pa").get<double>();
@@ -561,6 +574,15 @@ TEST(FeGear, ComparisonGivesSphFeAndErrorOrSaysWhatIsMissing) {
   EXPECT_NEAR(block.at("fillet_compression_peak_Pa").at("error").get<double>(), 0.0, 1e-12);
   // The FE figures' colour scale, for the SPH field drawn beside them.
   EXPECT_EQ(block.at("image_range_Pa"), nlohmann::json({-5.25e8, 5.25e8}));
+  // The pinion's compliance beside the SPH split, when both give it.
+  EXPECT_FALSE(block.contains("pinion_compliance_um_mm_per_N"));
+  fe["pinion_compliance_at_load_um_mm_per_N"] = 0.0429;
+  sc["mesh_compliance"] = {{"pinion_um_mm_per_N", 0.0377}, {"contact_um_mm_per_N", 0.0262}};
+  block = fe_comparison(sph, fe);
+  const nlohmann::json& pc = block.at("pinion_compliance_um_mm_per_N");
+  EXPECT_EQ(pc.at("fe_pinion_at_load"), 0.0429);
+  EXPECT_EQ(pc.at("sph_pinion"), 0.0377);
+  EXPECT_EQ(pc.at("sph_contact"), 0.0262);
 }
 
 // ------------------------------------------------------------------- CLI --

@@ -62,6 +62,10 @@ void print_report(const nlohmann::json& s) {
         100.0 * d.at("fillet_stress_at_iso30_Pa").at("relative_difference").get<double>(),
         100.0 * d.at("fillet_compression_peak_Pa").at("relative_difference").get<double>());
   }
+  std::printf(
+      "pinion compliance at the load (tooth, rim and the pinion's Hertz indentation, from the "
+      "held radius): %.4f um mm/N\n",
+      s.at("pinion_compliance_at_load_um_mm_per_N").get<double>());
   const nlohmann::json& iso = s.at("iso_6336_3");
   std::printf(
       "ISO 6336-3 sigma_F0 = %.2f MPa (Y_F %.3f, Y_S %.3f): FE peak / sigma_F0 = %.3f, "
