@@ -16,6 +16,7 @@
 #include "solver/run/execute.hpp"
 #ifdef GEARSPH_FE_WITH_RENDER
 #include "fe/fe_images.hpp"
+#include "fe/rack_fe_model.hpp"
 #endif
 
 namespace gearsph::fe {
@@ -205,7 +206,10 @@ nlohmann::json load_json(const CheckCase& k, const GearLoadPatch& load, double f
 void add_convergence(const nlohmann::json& meshes, nlohmann::json& s) {
   const nlohmann::json& top = meshes.back();
   std::vector<std::string> keys = fillet_keys();
-  keys.push_back("pinion_compliance_at_load_um_mm_per_N");
+  for (const char* k : {"pinion_compliance_at_load_um_mm_per_N", "rack_compliance_um_mm_per_N",
+                        "pair_mesh_stiffness_N_per_mm_um"}) {
+    keys.push_back(k);
+  }
   nlohmann::json convergence;
   nlohmann::json sizes = nlohmann::json::array();
   for (const nlohmann::json& m : meshes) sizes.push_back(m.at("fillet_size_m"));
@@ -267,6 +271,7 @@ nlohmann::json run_fe_check(const nlohmann::json& job, const std::filesystem::pa
     work = temp->path();
   }
   std::vector<GearFeResult> results;
+  std::vector<RackFeResult> racks;
   for (double size : sizes) {
     if (o.cancelled && o.cancelled()) throw FeFailed("the FE check was cancelled");
     char name[48];
@@ -275,6 +280,9 @@ nlohmann::json run_fe_check(const nlohmann::json& job, const std::filesystem::pa
     results.push_back(solve_gear_fe(c, gear_mesh_sizes(pinion, size), step, tools, work, name,
                                     o.threads, o.timeout_s));
     const GearFeResult& r = results.back();
+    // The rack's tooth under the same pressure, for the pair's stiffness.
+    racks.push_back(solve_rack_fe(c, r.load, size, tools, work, std::string(name) + "_rack",
+                                  o.threads, o.timeout_s));
     char line[200];
     std::snprintf(line, sizeof line,
                   "  %zu nodes, %zu elements: tension fillet peak %.2f MPa, at ISO's 30-degree "
@@ -295,7 +303,16 @@ nlohmann::json run_fe_check(const nlohmann::json& job, const std::filesystem::pa
   s["model"] = model_json(k, pinion, tools, step);
   s["load"] = load_json(k, ref.load, ft);
   nlohmann::json meshes = nlohmann::json::array();
-  for (const GearFeResult& r : results) meshes.push_back(mesh_json(r, c.face_width_m));
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    nlohmann::json m = mesh_json(results[i], c.face_width_m);
+    // um mm/N; the pair's stiffness 1 / (pinion + rack) in N/(mm um).
+    const double rack = 1e9 * racks[i].compliance_m2_per_N;
+    m["rack_compliance_um_mm_per_N"] = rack;
+    m["rack_nodes"] = racks[i].mesh.nodes.size();
+    m["pair_mesh_stiffness_N_per_mm_um"] =
+        1.0 / (m.at("pinion_compliance_at_load_um_mm_per_N").get<double>() + rack);
+    meshes.push_back(m);
+  }
   s["meshes"] = meshes;
   // The reference's numbers at the top, with the SPH static check's names.
   const nlohmann::json& top = meshes.back();
@@ -303,7 +320,8 @@ nlohmann::json run_fe_check(const nlohmann::json& job, const std::filesystem::pa
   s["reference_fillet_size_m"] = ref.sizes.fillet;
   for (const std::string& key : fillet_keys()) s[key] = top.at(key);
   for (const char* key : {"fillet_tension_peak_angle_deg", "nodes", "elements", "reaction_total_N",
-                          "applied_force_N", "pinion_compliance_at_load_um_mm_per_N"}) {
+                          "applied_force_N", "pinion_compliance_at_load_um_mm_per_N",
+                          "rack_compliance_um_mm_per_N", "pair_mesh_stiffness_N_per_mm_um"}) {
     s[key] = top.at(key);
   }
   s["load_radius_m"] = ref.load.radius_m;
@@ -391,12 +409,29 @@ nlohmann::json fe_comparison(const nlohmann::json& sph_summary, const nlohmann::
          "FE: the tooth, the rim and the pinion's Hertz indentation, the load's displacement; "
          "SPH: the pinion's smoothed contact point (tooth and rim), and the contact part "
          "(the near field and spring of both bodies)"}};
+    if (fe.contains("rack_compliance_um_mm_per_N")) {
+      entry["fe_rack_at_load"] = fe.at("rack_compliance_um_mm_per_N");
+    }
     if (check && check->contains("mesh_compliance") && (*check)["mesh_compliance"].is_object()) {
       const nlohmann::json& mc = (*check)["mesh_compliance"];
       entry["sph_pinion"] = mc.value("pinion_um_mm_per_N", 0.0);
       entry["sph_contact"] = mc.value("contact_um_mm_per_N", 0.0);
+      entry["sph_rack"] = mc.value("rack_um_mm_per_N", 0.0);
     }
     block["pinion_compliance_um_mm_per_N"] = entry;
+  }
+  // The pair's mesh stiffness: FE's pinion and rack in series, each with its
+  // side of the Hertz indentation, against the static check's.
+  if (fe.contains("pair_mesh_stiffness_N_per_mm_um")) {
+    const double fe_k = fe.at("pair_mesh_stiffness_N_per_mm_um").get<double>();
+    nlohmann::json entry = {{"fe", fe_k}, {"sph", nullptr}, {"error", nullptr}};
+    if (check && check->contains("mesh_stiffness_N_per_mm_um") &&
+        (*check)["mesh_stiffness_N_per_mm_um"].is_number()) {
+      const double sph = (*check)["mesh_stiffness_N_per_mm_um"].get<double>();
+      entry["sph"] = sph;
+      entry["error"] = (sph - fe_k) / fe_k;
+    }
+    block["mesh_stiffness_N_per_mm_um"] = entry;
   }
   return block;
 }

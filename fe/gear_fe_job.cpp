@@ -69,6 +69,11 @@ GearFeJob read_gear_fe_job(const nlohmann::json& job) {
   c.rack_E_Pa = rm.at("E_Pa").get<double>();
   c.rack_nu = rm.at("nu").get<double>();
   c.face_width_m = 1e-3 * pj.at("face_width_mm").get<double>();
+  // The scene's rack (rack_pinion.cpp, build_rack): two modules of back
+  // unless given.
+  c.rack_back_m = rj.contains("back_thickness_mm") ? 1e-3 * rj.at("back_thickness_mm").get<double>()
+                                                   : 2.0 * c.pinion.tool.module_m;
+  c.rack_backlash_m = 1e-3 * rj.at("backlash_mm").get<double>();
   // Held where the scene's hub ring begins (rack_pinion.cpp: r_drive).
   out.rim_depth_m = scenes::pinion_rim_depth_m(pj);
   c.fixed_radius_m = pinion->root_radius() - out.rim_depth_m;

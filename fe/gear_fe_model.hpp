@@ -49,6 +49,11 @@ struct GearFeCase {
   // The loaded flank of tooth 0: -1 the one on the -x side (a clockwise
   // pinion driving the rack), +1 the +x side.
   int flank_side = -1;
+  // The rack the pinion meshes with (the scene's: its cutting tool's
+  // profile, one tooth on a back of `rack_back_m`), for its compliance
+  // (rack_fe_model.hpp).
+  double rack_back_m = 0.0;
+  double rack_backlash_m = 0.0;
   int neighbours = 1;       // teeth each side of tooth 0
   bool whole_gear = false;  // all teeth, held on a bore of fixed_radius_m
   double fixed_radius_m = 0.0;

@@ -20,6 +20,8 @@
 #include "fe/fe_check.hpp"
 #include "fe/gear_fe_job.hpp"
 #include "fe/gmsh_mesher.hpp"
+#include "solver/gear/gear_rating.hpp"
+#include "solver/geometry/gear_profile.hpp"
 #include "solver/job/job.hpp"
 
 namespace gearsph::fe {
@@ -434,7 +436,7 @@ TEST(FeGear, FilletStressAgainstIsoAtPitchHpstcAndTip) {
   FeCheckOptions o;
   o.fillet_sizes_m = {0.4e-3, 0.2e-3};
   o.images = false;
-  double compliance_below = 0.0;
+  double compliance_below = 0.0, pair_above = 1e300;
   for (const char* point : {"pitch", "hpstc", "tip"}) {
     const nlohmann::json s = run_fe_check(gear_job(point), dir.path() / point, o);
     // The pinion's compliance at the load's centre: converged between the
@@ -449,6 +451,30 @@ TEST(FeGear, FilletStressAgainstIsoAtPitchHpstcAndTip) {
     EXPECT_GT(compliance, compliance_below) << point;
     EXPECT_LT(std::abs(compliance_diff), 0.02) << point;
     compliance_below = compliance;
+    // The rack's tooth under the same pressure, and the pair in series:
+    // converged, and stiffer the nearer the load sits to the pitch point.
+    // At the pitch point it is ISO 6336-1's theoretical single-pair
+    // stiffness c'_th (the ideal elastic pair, c' / C_M) to within ISO's
+    // own accuracy.
+    const double pair = s.at("pair_mesh_stiffness_N_per_mm_um").get<double>();
+    const double rack_diff =
+        s.at("coarse_fine_difference").at("rack_compliance_um_mm_per_N").at("relative_difference");
+    std::printf("%-5s rack compliance %.4f um mm/N, coarse-fine %+.3f %%; pair %.2f N/(mm um)\n",
+                point, s.at("rack_compliance_um_mm_per_N").get<double>(), 100.0 * rack_diff, pair);
+    EXPECT_GT(s.at("rack_compliance_um_mm_per_N").get<double>(), 0.0) << point;
+    EXPECT_LT(std::abs(rack_diff), 0.03) << point;
+    EXPECT_LT(pair, pair_above) << point;
+    pair_above = pair;
+    if (std::string(point) == "pitch") {
+      const GearFeJob read = read_gear_fe_job(gear_job(point));
+      const geometry::PinionGeometry pinion(read.model.pinion);
+      const double c_th =
+          1e-9 * gear::iso_single_pair_stiffness(pinion, read.model.E_Pa, read.model.rack_E_Pa) /
+          gear::kIsoMeasuredOverTheoretical;
+      std::printf("pitch: pair %.2f against ISO c'_th %.2f N/(mm um) (%+.1f %%)\n", pair, c_th,
+                  100.0 * (pair / c_th - 1.0));
+      EXPECT_NEAR(pair / c_th, 1.0, 0.15);
+    }
     const nlohmann::json& iso = s.at("iso_6336_3");
     const double peak = s.at("fillet_tension_peak_Pa").get<double>();
     const double at30 = s.at("fillet_stress_at_iso30_Pa").get<double>();
@@ -583,6 +609,17 @@ TEST(FeGear, ComparisonGivesSphFeAndErrorOrSaysWhatIsMissing) {
   EXPECT_EQ(pc.at("fe_pinion_at_load"), 0.0429);
   EXPECT_EQ(pc.at("sph_pinion"), 0.0377);
   EXPECT_EQ(pc.at("sph_contact"), 0.0262);
+  // The pair's stiffness against the static check's.
+  EXPECT_FALSE(block.contains("mesh_stiffness_N_per_mm_um"));
+  fe["pair_mesh_stiffness_N_per_mm_um"] = 13.9;
+  fe["rack_compliance_um_mm_per_N"] = 0.030;
+  sc["mesh_stiffness_N_per_mm_um"] = 12.1;
+  sc["mesh_compliance"]["rack_um_mm_per_N"] = 0.0187;
+  block = fe_comparison(sph, fe);
+  EXPECT_EQ(block.at("pinion_compliance_um_mm_per_N").at("fe_rack_at_load"), 0.030);
+  EXPECT_EQ(block.at("pinion_compliance_um_mm_per_N").at("sph_rack"), 0.0187);
+  EXPECT_NEAR(block.at("mesh_stiffness_N_per_mm_um").at("error").get<double>(), 12.1 / 13.9 - 1.0,
+              1e-12);
 }
 
 // ------------------------------------------------------------------- CLI --
