@@ -320,10 +320,21 @@ std::array<double, 2> root_image_range_Pa(const GearFeResult& r) {
   return {-cap, cap};
 }
 
+FeModel meshed_model(const MeshSpec& spec, double E_Pa, double nu, const FeTools& tools,
+                     const std::filesystem::path& work_dir, const std::string& name,
+                     double timeout_s, double& mesh_s) {
+  const auto start = std::chrono::steady_clock::now();
+  FeModel model;
+  model.mesh = mesh_with_gmsh(spec, tools, work_dir, name, timeout_s);
+  mesh_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  model.E_Pa = E_Pa;
+  model.nu = nu;
+  return model;
+}
+
 GearFeResult solve_gear_fe(const GearFeCase& c, const GearMeshSizes& sizes, double sample_step_m,
                            const FeTools& tools, const std::filesystem::path& work_dir,
                            const std::string& name, int threads, double timeout_s) {
-  using Clock = std::chrono::steady_clock;
   if (!(c.normal_force_N > 0.0)) throw std::invalid_argument("gear FE model: no load");
   if (!(c.face_width_m > 0.0)) throw std::invalid_argument("gear FE model: no face width");
   const geometry::PinionGeometry g(c.pinion);
@@ -341,12 +352,7 @@ GearFeResult solve_gear_fe(const GearFeCase& c, const GearMeshSizes& sizes, doub
   out.sizes.load_band = std::max(sizes.load_band, 1.5 * out.load.half_width_m);
   const MeshSpec region = model_region(g, c, sample_step_m, out);
 
-  const auto t_mesh = Clock::now();
-  FeModel model;
-  model.mesh = mesh_with_gmsh(region, tools, work_dir, name, timeout_s);
-  out.mesh_s = std::chrono::duration<double>(Clock::now() - t_mesh).count();
-  model.E_Pa = c.E_Pa;
-  model.nu = c.nu;
+  FeModel model = meshed_model(region, c.E_Pa, c.nu, tools, work_dir, name, timeout_s, out.mesh_s);
   model.supports.push_back({group_nodes(model.mesh, "fixed"), true, true});
   const std::vector<BoundaryEdge> boundary = boundary_edges(model.mesh);
   model.nodal_forces = flank_forces(model.mesh, boundary, c, out.load);

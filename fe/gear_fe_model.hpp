@@ -113,6 +113,12 @@ struct GearFeResult {
 // that the dashboard draws beside.
 std::array<double, 2> root_image_range_Pa(const GearFeResult& r);
 
+// A model of one material on the mesh gmsh makes of `spec`, with no
+// supports or loads yet; `mesh_s` gets gmsh's time.
+FeModel meshed_model(const MeshSpec& spec, double E_Pa, double nu, const FeTools& tools,
+                     const std::filesystem::path& work_dir, const std::string& name,
+                     double timeout_s, double& mesh_s);
+
 // Builds, meshes and solves the model in `work_dir` (files `name`.geo,
 // .msh, .inp, .frd, ... stay there). `sample_step_m`: spacing of the fillet
 // curve samples.

@@ -1,7 +1,6 @@
 #include "fe/rack_fe_model.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -22,7 +21,6 @@ constexpr double kCornerRad = 25.0 * 3.141592653589793 / 180.0;
 RackFeResult solve_rack_fe(const GearFeCase& c, const GearLoadPatch& load, double element_size_m,
                            const FeTools& tools, const std::filesystem::path& work_dir,
                            const std::string& name, int threads, double timeout_s) {
-  using Clock = std::chrono::steady_clock;
   geometry::RackSpec rs;
   rs.profile = c.pinion.tool;
   rs.teeth = 1;
@@ -100,12 +98,8 @@ RackFeResult solve_rack_fe(const GearFeCase& c, const GearLoadPatch& load, doubl
 
   RackFeResult out;
   out.load_point = centre;
-  const auto t_mesh = Clock::now();
-  FeModel model;
-  model.mesh = mesh_with_gmsh(spec, tools, work_dir, name, timeout_s);
-  out.mesh_s = std::chrono::duration<double>(Clock::now() - t_mesh).count();
-  model.E_Pa = c.rack_E_Pa;
-  model.nu = c.rack_nu;
+  FeModel model =
+      meshed_model(spec, c.rack_E_Pa, c.rack_nu, tools, work_dir, name, timeout_s, out.mesh_s);
   const std::vector<BoundaryEdge> boundary = boundary_edges(model.mesh);
   const std::vector<BoundaryEdge> flank = group_edges(model.mesh, boundary, "loaded_flank");
   const std::vector<BoundaryEdge> back = group_edges(model.mesh, boundary, "back");
