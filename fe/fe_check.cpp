@@ -11,12 +11,12 @@
 #include <sstream>
 
 #include "fe/external_program.hpp"
+#include "fe/rack_fe_model.hpp"
 #include "solver/gear/gear_rating.hpp"
 #include "solver/job/job.hpp"
 #include "solver/run/execute.hpp"
 #ifdef GEARSPH_FE_WITH_RENDER
 #include "fe/fe_images.hpp"
-#include "fe/rack_fe_model.hpp"
 #endif
 
 namespace gearsph::fe {
@@ -399,16 +399,16 @@ nlohmann::json fe_comparison(const nlohmann::json& sph_summary, const nlohmann::
   block["iso_sigma_F0_Pa"] = fe.at("iso_6336_3").at("sigma_F0_Pa");
   if (fe.contains("image_range_Pa")) block["image_range_Pa"] = fe.at("image_range_Pa");
   block["coarse_fine_difference"] = fe.value("coarse_fine_difference", nlohmann::json());
-  // The pinion's compliance beside the static check's split of the mesh
-  // compliance: FE's includes the pinion's Hertz indentation, which the SPH
-  // split counts in its contact part, with the rack's (docs/gears.md).
+  // Each body's compliance beside the static check's split of the mesh
+  // compliance: FE's include each body's side of the Hertz indentation,
+  // which the SPH split counts in its contact part (docs/gears.md).
   if (fe.contains("pinion_compliance_at_load_um_mm_per_N")) {
     nlohmann::json entry = {
         {"fe_pinion_at_load", fe.at("pinion_compliance_at_load_um_mm_per_N")},
         {"note",
-         "FE: the tooth, the rim and the pinion's Hertz indentation, the load's displacement; "
-         "SPH: the pinion's smoothed contact point (tooth and rim), and the contact part "
-         "(the near field and spring of both bodies)"}};
+         "FE: each body's load displacement, its side of the Hertz indentation included "
+         "(the pinion from its held radius, the rack from its mean); SPH: each body's smoothed "
+         "contact point, and the contact part (the near field and spring of both bodies)"}};
     if (fe.contains("rack_compliance_um_mm_per_N")) {
       entry["fe_rack_at_load"] = fe.at("rack_compliance_um_mm_per_N");
     }
@@ -418,7 +418,7 @@ nlohmann::json fe_comparison(const nlohmann::json& sph_summary, const nlohmann::
       entry["sph_contact"] = mc.value("contact_um_mm_per_N", 0.0);
       entry["sph_rack"] = mc.value("rack_um_mm_per_N", 0.0);
     }
-    block["pinion_compliance_um_mm_per_N"] = entry;
+    block["mesh_compliance_um_mm_per_N"] = entry;
   }
   // The pair's mesh stiffness: FE's pinion and rack in series, each with its
   // side of the Hertz indentation, against the static check's.

@@ -601,11 +601,11 @@ TEST(FeGear, ComparisonGivesSphFeAndErrorOrSaysWhatIsMissing) {
   // The FE figures' colour scale, for the SPH field drawn beside them.
   EXPECT_EQ(block.at("image_range_Pa"), nlohmann::json({-5.25e8, 5.25e8}));
   // The pinion's compliance beside the SPH split, when both give it.
-  EXPECT_FALSE(block.contains("pinion_compliance_um_mm_per_N"));
+  EXPECT_FALSE(block.contains("mesh_compliance_um_mm_per_N"));
   fe["pinion_compliance_at_load_um_mm_per_N"] = 0.0429;
   sc["mesh_compliance"] = {{"pinion_um_mm_per_N", 0.0377}, {"contact_um_mm_per_N", 0.0262}};
   block = fe_comparison(sph, fe);
-  const nlohmann::json& pc = block.at("pinion_compliance_um_mm_per_N");
+  const nlohmann::json& pc = block.at("mesh_compliance_um_mm_per_N");
   EXPECT_EQ(pc.at("fe_pinion_at_load"), 0.0429);
   EXPECT_EQ(pc.at("sph_pinion"), 0.0377);
   EXPECT_EQ(pc.at("sph_contact"), 0.0262);
@@ -616,8 +616,8 @@ TEST(FeGear, ComparisonGivesSphFeAndErrorOrSaysWhatIsMissing) {
   sc["mesh_stiffness_N_per_mm_um"] = 12.1;
   sc["mesh_compliance"]["rack_um_mm_per_N"] = 0.0187;
   block = fe_comparison(sph, fe);
-  EXPECT_EQ(block.at("pinion_compliance_um_mm_per_N").at("fe_rack_at_load"), 0.030);
-  EXPECT_EQ(block.at("pinion_compliance_um_mm_per_N").at("sph_rack"), 0.0187);
+  EXPECT_EQ(block.at("mesh_compliance_um_mm_per_N").at("fe_rack_at_load"), 0.030);
+  EXPECT_EQ(block.at("mesh_compliance_um_mm_per_N").at("sph_rack"), 0.0187);
   EXPECT_NEAR(block.at("mesh_stiffness_N_per_mm_um").at("error").get<double>(), 12.1 / 13.9 - 1.0,
               1e-12);
 }
