@@ -236,25 +236,16 @@ MeshSpec model_region(const geometry::PinionGeometry& g, const GearFeCase& c, do
   return spec;
 }
 
-// The Hertzian pressure on the loaded flank's boundary edges as nodal
-// forces per unit thickness, scaled so that the force is exactly F_n (the
-// quadrature of the sqrt-shaped patch on edges it covers in part is good to
-// about 1e-4). Sets load.applied_N (per gear).
+// The pinion's loaded flank carries the Hertzian pressure of its patch,
+// scaled to F_n exactly (hertz_forces). Sets load.applied_N (per gear).
 std::vector<Point> flank_forces(const TriMesh& mesh, const std::vector<BoundaryEdge>& boundary,
                                 const GearFeCase& c, GearLoadPatch& load) {
   const std::vector<BoundaryEdge> flank = group_edges(mesh, boundary, "loaded_flank");
-  const GearLoadPatch& lp = load;
-  const Traction hertz = [&lp](Point x, Point normal) {
-    const double d = geometry::norm(x - lp.centre) / lp.half_width_m;
-    const double p = d < 1.0 ? lp.peak_pressure_Pa * std::sqrt(1.0 - d * d) : 0.0;
-    return -p * normal;
-  };
-  std::vector<Point> forces = traction_forces(mesh, flank, hertz, 64);
+  const std::vector<Point> forces =
+      hertz_forces(mesh, flank, load.centre, load, c.normal_force_N / c.face_width_m);
   Point total;
   for (const Point& f : forces) total = total + f;
-  const double scale = c.normal_force_N / c.face_width_m / geometry::norm(total);
-  for (Point& f : forces) f = scale * f;
-  load.applied_N = (scale * c.face_width_m) * total;
+  load.applied_N = c.face_width_m * total;
   return forces;
 }
 
@@ -320,6 +311,32 @@ std::array<double, 2> root_image_range_Pa(const GearFeResult& r) {
   return {-cap, cap};
 }
 
+std::vector<Point> hertz_forces(const TriMesh& mesh, const std::vector<BoundaryEdge>& edges,
+                                Point centre, const GearLoadPatch& patch, double line_load) {
+  const Traction hertz = [&](Point x, Point normal) {
+    const double d = geometry::norm(x - centre) / patch.half_width_m;
+    const double p = d < 1.0 ? patch.peak_pressure_Pa * std::sqrt(1.0 - d * d) : 0.0;
+    return -p * normal;
+  };
+  std::vector<Point> forces = traction_forces(mesh, edges, hertz, 64);
+  Point total;
+  for (const Point& f : forces) total = total + f;
+  const double scale = line_load / geometry::norm(total);
+  for (Point& f : forces) f = scale * f;
+  return forces;
+}
+
+double load_displacement(const std::vector<Point>& forces, const FeSolution& solution) {
+  double work = 0.0;
+  Point total;
+  for (std::size_t k = 0; k < forces.size(); ++k) {
+    const Point f = forces[k], u = solution.displacement[k];
+    work += f.x * u.x + f.y * u.y;
+    total = total + f;
+  }
+  return work / geometry::norm(total);
+}
+
 FeModel meshed_model(const MeshSpec& spec, double E_Pa, double nu, const FeTools& tools,
                      const std::filesystem::path& work_dir, const std::string& name,
                      double timeout_s, double& mesh_s) {
@@ -361,15 +378,7 @@ GearFeResult solve_gear_fe(const GearFeCase& c, const GearMeshSizes& sizes, doub
   out.solve_s = out.solution.wall_s;
   out.reaction_N = c.face_width_m * out.solution.reaction;
   out.mesh = std::move(model.mesh);
-  // The load's work-conjugate displacement: sum f_k . u_k / |sum f_k|.
-  double work = 0.0;
-  Point total{0.0, 0.0};
-  for (std::size_t k = 0; k < model.nodal_forces.size(); ++k) {
-    const Point f = model.nodal_forces[k], u = out.solution.displacement[k];
-    work += f.x * u.x + f.y * u.y;
-    total = total + f;
-  }
-  out.load_displacement_m = work / geometry::norm(total);
+  out.load_displacement_m = load_displacement(model.nodal_forces, out.solution);
   stress_on_fillets(boundary, out);
   return out;
 }

@@ -113,6 +113,16 @@ struct GearFeResult {
 // that the dashboard draws beside.
 std::array<double, 2> root_image_range_Pa(const GearFeResult& r);
 
+// Nodal forces per unit thickness of the Hertzian pressure
+// p0 sqrt(1 - (d/a)^2) of `patch` (its half-width and peak) about `centre`
+// on `edges`, scaled so that they add up to `line_load` [N/m] exactly (the
+// quadrature of the sqrt-shaped patch on edges it covers in part is good to
+// about 1e-4).
+std::vector<Point> hertz_forces(const TriMesh& mesh, const std::vector<BoundaryEdge>& edges,
+                                Point centre, const GearLoadPatch& patch, double line_load);
+// The displacement work-conjugate to `forces`: sum f . u / |sum f| [m].
+double load_displacement(const std::vector<Point>& forces, const FeSolution& solution);
+
 // A model of one material on the mesh gmsh makes of `spec`, with no
 // supports or loads yet; `mesh_s` gets gmsh's time.
 FeModel meshed_model(const MeshSpec& spec, double E_Pa, double nu, const FeTools& tools,

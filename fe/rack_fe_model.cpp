@@ -43,8 +43,7 @@ RackFeResult solve_rack_fe(const GearFeCase& c, const GearLoadPatch& load, doubl
   const double y = -along * std::sin(alpha);
   const Point centre{0.5 * rack.datum_thickness() - y * std::tan(alpha), y};
 
-  // The flank between the vertices nearest its two ends, the back's
-  // straight bottom held.
+  // The back's straight bottom, and the loaded flank.
   double y_low = poly[0].y;
   for (const Point& q : poly) y_low = std::min(y_low, q.y);
   std::vector<std::size_t> cuts;
@@ -108,19 +107,9 @@ RackFeResult solve_rack_fe(const GearFeCase& c, const GearLoadPatch& load, doubl
   }
   // The pinion's Hertz pressure on the rack's flank, scaled to F_n / b.
   const double line_load = c.normal_force_N / c.face_width_m;
-  std::vector<Point> hertz = traction_forces(
-      model.mesh, flank,
-      [&](Point x, Point normal) {
-        const double d = geometry::norm(x - centre) / load.half_width_m;
-        const double p = d < 1.0 ? load.peak_pressure_Pa * std::sqrt(1.0 - d * d) : 0.0;
-        return -p * normal;
-      },
-      64);
+  const std::vector<Point> hertz = hertz_forces(model.mesh, flank, centre, load, line_load);
   Point total;
   for (const Point& f : hertz) total = total + f;
-  const double scale = line_load / geometry::norm(total);
-  for (Point& f : hertz) f = scale * f;
-  total = scale * total;
   // The back: held in y, pushed in x against the load's x part; one node
   // holds x (the rigid slide only).
   const double width = rack.pitch();
@@ -139,12 +128,7 @@ RackFeResult solve_rack_fe(const GearFeCase& c, const GearLoadPatch& load, doubl
 
   out.solution = solve_with_calculix(model, tools, work_dir, name, threads, timeout_s);
   out.solve_s = out.solution.wall_s;
-  double work = 0.0;
-  for (std::size_t k = 0; k < hertz.size(); ++k) {
-    work +=
-        hertz[k].x * out.solution.displacement[k].x + hertz[k].y * out.solution.displacement[k].y;
-  }
-  out.load_displacement_m = work / line_load;
+  out.load_displacement_m = load_displacement(hertz, out.solution);
   // The area mean along the load: over a six-node triangle a quadratic
   // field's mean is that of its three mid-side nodes.
   const Point dir = (1.0 / geometry::norm(total)) * total;
