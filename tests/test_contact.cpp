@@ -13,6 +13,7 @@
 #include "solver/physics/contact_hertz.hpp"
 #include "solver/physics/contact_near_field.hpp"
 #include "solver/physics/contact_seed_penalty.hpp"
+#include "solver/physics/contact_surface.hpp"
 #include "solver/run/runner.hpp"
 
 namespace gearsph {
@@ -214,6 +215,102 @@ TEST(Contact, SurfaceCurvatureIsTheOutlines) {
   }
   EXPECT_GT(arc, 2u);
   EXPECT_GT(flat, 2u);
+}
+
+// The overlap of two curved outlines (contact_surface.hpp): rows of
+// particles on a circle pressed into a line and into another circle, shifted
+// along each other by any fraction of a spacing. Every pair around the
+// contact reads the two surfaces' overlap, not the particles', with the
+// common normal there, and the pairs' weights add up to one: the contact
+// carries its load once, wherever it falls between particles. Swapping the
+// pair flips the normal and nothing else.
+TEST(Contact, CurvedOutlinesTouchOnceAtTheirOverlapWhereverTheContactFalls) {
+  const double h_i = 0.5e-3, h_j = 0.7e-3, delta = 3e-6;
+  // Body i: a circle of radius R_i above, centre (0, R_i - delta); body j
+  // below, a circle of radius R_j (0 for a line) centred at (c, -R_j).
+  for (const double r_j : {0.0, 20e-3}) {
+    const double r_i = 8e-3, tilt = 0.2;
+    // The two bodies touch along the direction `tilt` from the vertical:
+    // the circles' centres lie on that line; overlap delta.
+    const double ux = std::sin(tilt), uy = std::cos(tilt);
+    const double ci_x = ux * (r_i - delta), ci_y = uy * (r_i - delta);
+    const double cj_x = -ux * r_j, cj_y = -uy * r_j;
+    const double kappa_i = 1.0 / r_i, kappa_j = r_j > 0.0 ? 1.0 / r_j : 0.0;
+    for (const double shift : {0.0, 0.25, 0.5, 0.8}) {
+      double total = 0.0;
+      int smooth = 0;
+      for (int a = -3; a <= 3; ++a) {
+        // Particle a of body i at arc length (a + shift) h_i from the contact.
+        const double phi_i = (a + shift) * h_i / r_i;
+        const double ai = tilt + phi_i;  // direction of i's outward normal, reversed
+        const double xi = ci_x - r_i * std::sin(ai), yi = ci_y - r_i * std::cos(ai);
+        const double ni_x = -std::sin(ai), ni_y = -std::cos(ai);
+        for (int b = -3; b <= 3; ++b) {
+          const double s_j = (b - 0.3 * shift) * h_j;
+          double xj, yj, nj_x, nj_y;
+          if (r_j > 0.0) {
+            const double aj = tilt + s_j / r_j;
+            xj = cj_x + r_j * std::sin(aj);
+            yj = cj_y + r_j * std::cos(aj);
+            nj_x = std::sin(aj);
+            nj_y = std::cos(aj);
+          } else {
+            xj = s_j * uy;
+            yj = -s_j * ux;
+            nj_x = ux;
+            nj_y = uy;
+          }
+          const physics::SurfacePair sp = physics::curved_surface_pair(
+              xi - xj, yi - yj, ni_x, ni_y, nj_x, nj_y, kappa_i, kappa_j, h_i, h_j);
+          const physics::SurfacePair back = physics::curved_surface_pair(
+              xj - xi, yj - yi, nj_x, nj_y, ni_x, ni_y, kappa_j, kappa_i, h_j, h_i);
+          // (A particle a whole spacing from the contact has weight 0 either
+          // way, to round-off.)
+          EXPECT_NEAR(sp.active ? sp.weight : 0.0, back.active ? back.weight : 0.0, 1e-12);
+          if (!sp.active || !back.active) continue;
+          // The parabolas stand for the circles within a spacing or two:
+          // the overlap to 2 % and the normal (the centres' line) to 1e-3.
+          EXPECT_NEAR(sp.overlap, delta, 0.02 * delta) << r_j << " " << shift << " " << a << b;
+          const double len = std::hypot(sp.nx, sp.ny);
+          EXPECT_NEAR(sp.nx / len, ux, 1e-3);
+          EXPECT_NEAR(sp.ny / len, uy, 1e-3);
+          EXPECT_NEAR(back.overlap, sp.overlap, 1e-12 * delta);
+          EXPECT_NEAR(back.weight, sp.weight, 1e-12);
+          EXPECT_NEAR(back.nx, -sp.nx, 1e-12);
+          EXPECT_NEAR(back.ny, -sp.ny, 1e-12);
+          // The force is the gradient of the pair's energy: (n, dweight) are
+          // the overlap's and the weight's derivatives in x_i - x_j.
+          const double eps = 1e-9;
+          for (const auto& [ex, ey] : {std::pair{1.0, 0.0}, std::pair{0.0, 1.0}}) {
+            auto at = [&](double sgn) {
+              return physics::curved_surface_pair(xi - xj + sgn * eps * ex,
+                                                  yi - yj + sgn * eps * ey, ni_x, ni_y, nj_x, nj_y,
+                                                  kappa_i, kappa_j, h_i, h_j);
+            };
+            const physics::SurfacePair plus = at(1.0), minus = at(-1.0);
+            if (!plus.active || !minus.active) continue;
+            EXPECT_NEAR((plus.overlap - minus.overlap) / (2.0 * eps), -(sp.nx * ex + sp.ny * ey),
+                        1e-5);
+            // (Not across a hat's apex, where the weight has a kink.)
+            const double up = (plus.weight - sp.weight) / eps,
+                         down = (sp.weight - minus.weight) / eps;
+            if (std::abs(up - down) > 1e-2 / h_i) continue;
+            ++smooth;
+            EXPECT_NEAR(back.dweight * (back.tx * ex + back.ty * ey),
+                        -sp.dweight * (sp.tx * ex + sp.ty * ey), 1e-6 / h_i);
+            EXPECT_NEAR(0.5 * (up + down), sp.dweight * (sp.tx * ex + sp.ty * ey), 1e-3 / h_i);
+          }
+          total += sp.weight;
+        }
+      }
+      EXPECT_NEAR(total, 1.0, 0.01) << "R_j " << r_j << ", shift " << shift;
+      EXPECT_GT(smooth, 2) << "R_j " << r_j << ", shift " << shift;
+    }
+  }
+  EXPECT_TRUE(physics::curved_pair(1.0 / 8e-3, 0.0, h_i, h_j));
+  EXPECT_FALSE(physics::curved_pair(0.0, 0.0, h_i, h_j));                  // the bars' faces
+  EXPECT_FALSE(physics::curved_pair(1e-3, -1e-3, h_i, h_j));               // a convex in a concave
+  EXPECT_FALSE(physics::curved_pair(1.0 / 8e-3, 1.0 / 0.5e-3, h_i, h_j));  // a rounded corner
 }
 
 // The smoothing tables (contact_smoothing.hpp): each source's weights are a

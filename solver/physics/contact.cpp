@@ -50,6 +50,9 @@ double plane_strain_compliance(const Material& m) {
   return 2.0 * (1.0 - m.nu * m.nu) / (3.141592653589793 * m.E);
 }
 
+// The turn of a normal for the energy's derivative in it [rad].
+constexpr double kTurn = 1e-6;
+
 // Outline particles face each other when their normals are within 45
 // degrees of opposed: cos(135 deg).
 constexpr double kFacingCosine = 0.7071067811865476;
@@ -147,6 +150,14 @@ void build_smoothing(Simulation& sim) {
   double widest = 0.0;
   for (std::uint32_t i : surface) widest = std::max(widest, reach * p.spacing[i]);
   std::vector<std::vector<std::pair<std::uint32_t, double>>> rows(p.n);
+  // Particles with a corner of their body's surface near them (curved_pair's
+  // turning test, on any surface particle within 2.5 of their spacings,
+  // whatever its normal: a corner particle's normal is one side's). The
+  // mean curvature of a particle beside a corner holds part of the
+  // corner's turn, and a flank's line extended past its end runs into the
+  // other body: neither is a parabola of the surface.
+  st.smooth_surface.assign(p.n, 0);
+  std::vector<std::uint8_t> near_corner(p.n, 0);
   for (std::size_t a = 0; a < surface.size(); ++a) {
     const std::uint32_t i = surface[a];
     const double radius = reach * p.spacing[i];
@@ -157,6 +168,10 @@ void build_smoothing(Simulation& sim) {
     for (std::size_t b = lo; b < surface.size() && p.x0[surface[b]] - p.x0[i] < widest; ++b) {
       const std::uint32_t k = surface[b];
       if (p.body[k] != p.body[i]) continue;
+      if (std::abs(p.surf_curvature[k]) * p.spacing[k] >= kCornerTurning &&
+          std::hypot(p.x0[k] - p.x0[i], p.y0[k] - p.y0[i]) < 2.5 * p.spacing[i]) {
+        near_corner[i] = 1;
+      }
       if (p.surf_nx[i] * p.surf_nx[k] + p.surf_ny[i] * p.surf_ny[k] < kSmoothingNormalCosine) {
         continue;
       }
@@ -189,6 +204,7 @@ void build_smoothing(Simulation& sim) {
     }
     st.smooth_rows[i + 1] = static_cast<std::uint32_t>(st.smooth_k.size());
   }
+  for (const std::uint32_t i : surface) st.smooth_surface[i] = near_corner[i] ? 0 : 1;
   st.spread_ax.assign(p.n, 0.0);
   st.spread_ay.assign(p.n, 0.0);
   st.smoothing_built = true;
@@ -355,6 +371,18 @@ void turn_contact_normals(Simulation& sim, std::size_t lo, std::size_t hi) {
   }
 }
 
+namespace {
+// Outline particle i's outward normal turned by its receivers' best-fit
+// rotation (contact_smoothing.hpp), from its smoothed point's sums; without
+// receivers to turn with, its reference normal.
+void smoothed_normal(const Particles& p, const SmoothedPoint& s, std::size_t i, double& nx,
+                     double& ny) {
+  const double r = std::sqrt(s.c * s.c + s.s * s.s);
+  const double c = r > 0.0 ? s.c / r : 1.0, sn = r > 0.0 ? s.s / r : 0.0;
+  turn_normal(c, sn, p.surf_nx[i], p.surf_ny[i], nx, ny);
+}
+}  // namespace
+
 void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
   Particles& p = sim.particles;
   const NeighbourList& nl = sim.contacts;
@@ -385,6 +413,7 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
     // Where i touches (contact_smoothing.hpp): its smoothed point, or itself.
     const SmoothedPoint si = smooth ? smoothed[i] : SmoothedPoint{p.x[i], p.y[i], p.vx[i], p.vy[i]};
     double fx = 0.0, fy = 0.0;
+    double normal_moment = 0.0;  // -dE/dtheta_i of i's surface pairs through its normal
     for (std::uint32_t k = nl.rows[i]; k < nl.rows[i + 1]; ++k) {
       const std::uint32_t j = nl.j[k];
       const SmoothedPoint sj =
@@ -395,8 +424,11 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
       // a lattice's dx otherwise). Symmetric in i and j.
       const double dx = std::max(spacing[i], spacing[j]), r0 = config.r0_over_dx * dx;
       double nx, ny, overlap, weight = 1.0;
+      double nix = 0.0, niy = 0.0, njx = 0.0, njy = 0.0;  // the surface pair's normals
+      SurfacePair turned[2];  // with i's normal turned by -+kTurn (smoothing)
+      double tangent_x = 0.0, tangent_y = 0.0, dweight = 0.0;
       if (surface) {
-        // True-surface gap (contact_surface.hpp); normals turned with the material.
+        // True-surface gap (contact_surface.hpp).
         if (!std::isfinite(p.surf_depth[i]) || !std::isfinite(p.surf_depth[j])) continue;
         // Two particles on their outlines (body-fitted, depth 0) touch only
         // within a spacing of each other and with their outward normals
@@ -404,18 +436,68 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
         // flank passes the half-plane test of surface_pair from a spacing
         // away (normals 134 degrees apart), and pressed the teeth apart
         // where the neighbour's flank had 0.1 mm of play.
-        if (p.surf_depth[i] == 0.0 && p.surf_depth[j] == 0.0 &&
-            (dxij * dxij + dyij * dyij >= dx * dx ||
-             normal_x[i] * normal_x[j] + normal_y[i] * normal_y[j] > -kFacingCosine)) {
+        const bool outline = p.surf_depth[i] == 0.0 && p.surf_depth[j] == 0.0;
+        // Smoothed (unresolved) contacts of curved outlines touch at one
+        // point between the particles (contact_surface.hpp), whose hats
+        // reach a spacing each way.
+        const bool curved =
+            outline && smooth && st.smooth_surface[i] && st.smooth_surface[j] &&
+            curved_pair(p.surf_curvature[i], p.surf_curvature[j], spacing[i], spacing[j]);
+        const double apart = curved ? spacing[i] + spacing[j] : dx;
+        if (outline && (dxij * dxij + dyij * dyij >= apart * apart ||
+                        normal_x[i] * normal_x[j] + normal_y[i] * normal_y[j] > -kFacingCosine)) {
           continue;
         }
-        const SurfacePair sp = surface_pair(dxij, dyij, normal_x[i], normal_y[i], normal_x[j],
-                                            normal_y[j], p.surf_depth[i], p.surf_depth[j], dx);
+        // The normals: with the smoothing, turned by each particle's
+        // receivers' rotation (its smoothed point's), a function of their
+        // positions, so that the pair's energy has a gradient the smoothing's
+        // couple applies (below); otherwise by the material's rotation.
+        if (smooth) {
+          smoothed_normal(p, si, i, nix, niy);
+          smoothed_normal(p, sj, j, njx, njy);
+        } else {
+          nix = normal_x[i];
+          niy = normal_y[i];
+          njx = normal_x[j];
+          njy = normal_y[j];
+        }
+        // The pair's geometry with i's normal (ax, ay), seen from i.
+        auto geometry = [&](double ax, double ay) {
+          return curved ? curved_surface_pair(dxij, dyij, ax, ay, njx, njy, p.surf_curvature[i],
+                                              p.surf_curvature[j], spacing[i], spacing[j])
+                        : surface_pair(dxij, dyij, ax, ay, njx, njy, p.surf_depth[i],
+                                       p.surf_depth[j], dx);
+        };
+        // Evaluated in one order for both ends, so that F_ji = -F_ij to the bit.
+        SurfacePair sp;
+        if (i > j) {
+          sp = curved ? curved_surface_pair(-dxij, -dyij, njx, njy, nix, niy, p.surf_curvature[j],
+                                            p.surf_curvature[i], spacing[j], spacing[i])
+                      : surface_pair(-dxij, -dyij, njx, njy, nix, niy, p.surf_depth[j],
+                                     p.surf_depth[i], dx);
+          sp.nx = -sp.nx;
+          sp.ny = -sp.ny;
+          sp.tx = -sp.tx;
+          sp.ty = -sp.ty;
+        } else {
+          sp = geometry(nix, niy);
+        }
         if (!sp.active) continue;
+        if (smooth) {
+          // The geometry with i's normal turned by -+kTurn, for the energy's
+          // derivative in i's receivers' rotation (below).
+          for (int side = 0; side < 2; ++side) {
+            const double turn = side ? kTurn : -kTurn, c = std::cos(turn), sn = std::sin(turn);
+            turned[side] = geometry(c * nix - sn * niy, sn * nix + c * niy);
+          }
+        }
         nx = sp.nx;
         ny = sp.ny;
         overlap = sp.overlap;
         weight = sp.weight;
+        tangent_x = sp.tx;
+        tangent_y = sp.ty;
+        dweight = sp.dweight;
       } else {
         const double r2 = dxij * dxij + dyij * dyij;
         if (r2 >= r0 * r0) continue;
@@ -428,18 +510,31 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
       const double e_star = contact_modulus(mi, mj);
       const double vj = p.mass[j] / p.rho[j];
       const double vol = 2.0 * vi * vj / (vi + vj);
-      PairLaw law;
-      if (config.model == ContactModel::Hertz) {
-        law = hertz_penalty(e_star, dx, overlap);
-      } else if (surface && config.near_field) {
-        const NearField nf = near_field(e_star, plane_strain_compliance(mi),
-                                        plane_strain_compliance(mj), st.log_moment[i],
-                                        st.log_moment[j], p.surf_curvature[i] + p.surf_curvature[j],
-                                        kStiffSpring * e_star * vol / (dx * dx));
-        law = near_field_law(nf, overlap);
-      } else {
-        law = seed_penalty(config.D, e_star, vol, surface ? dx : r0, overlap);
+      const NearField nf =
+          surface && config.near_field
+              ? near_field(e_star, plane_strain_compliance(mi), plane_strain_compliance(mj),
+                           st.log_moment[i], st.log_moment[j],
+                           p.surf_curvature[i] + p.surf_curvature[j],
+                           kStiffSpring * e_star * vol / (dx * dx))
+              : NearField{};
+      auto law_of = [&](double ov) {
+        if (config.model == ContactModel::Hertz) return hertz_penalty(e_star, dx, ov);
+        if (surface && config.near_field) return near_field_law(nf, ov);
+        return seed_penalty(config.D, e_star, vol, surface ? dx : r0, ov);
+      };
+      PairLaw law = law_of(overlap);
+      if (surface && smooth) {
+        // The pair's energy w Phi depends on i's normal, which turns with
+        // i's receivers: its derivative in that angle (a central difference
+        // of the geometry, Phi linearised about the overlap) goes to the
+        // couple, so that the contact's forces are the gradient of its
+        // energy also while the bodies turn.
+        auto energy = [&](const SurfacePair& q) {
+          return q.active ? q.weight * (law.energy + law.force * (q.overlap - overlap)) : 0.0;
+        };
+        normal_moment -= (energy(turned[1]) - energy(turned[0])) / (2.0 * kTurn);
       }
+      const double phi = law.energy;  // before the weight, for its gradient below
       law.force *= weight;
       law.stiffness *= weight;
       law.energy *= weight;
@@ -449,8 +544,11 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
       const double m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
       const double damper = 2.0 * config.damping_ratio * std::sqrt(law.stiffness * m_eff);
       const double f = std::max(0.0, law.force - damper * vn);
-      fx += f * nx;
-      fy += f * ny;
+      // The weight's own gradient: the energy's tangential part as the
+      // partners slide along each other (contact_surface.hpp).
+      const double ft = -phi * dweight;
+      fx += f * nx + ft * tangent_x;
+      fy += f * ny + ft * tangent_y;
       // Each pair is seen from both ends: count its energy and the pair once.
       if (i < j) {
         ++tally.active;
@@ -467,7 +565,7 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
       // receivers turn, and is spread as M dtheta/dx_k: with it the spread
       // force is the gradient of the penalty energy (contact_smoothing.hpp).
       const double r2 = si.c * si.c + si.s * si.s;
-      const double moment = r2 > 0.0 ? (si.ox * fy - si.oy * fx) / r2 : 0.0;
+      const double moment = r2 > 0.0 ? (si.ox * fy - si.oy * fx + normal_moment) / r2 : 0.0;
       ContactState& out = sim.contact_state;
       out.couple_c[i] = moment * si.c;
       out.couple_s[i] = moment * si.s;

@@ -80,6 +80,10 @@ struct ContactState {
   // each thread its own rows).
   Column<double> spread_ax, spread_ay;
   std::vector<double> smooth_offset_x, smooth_offset_y;
+  // 1 for a surface particle with no corner within one and a half of its
+  // spacings along its surface (curved_pair's turning test on itself and
+  // its receivers there): it may touch at a point between particles.
+  std::vector<std::uint8_t> smooth_surface;
   // Each surface particle's log-moment Lambda (contact_near_field.hpp).
   std::vector<double> log_moment;
   // The receivers' weighted centroid in the reference configuration.
