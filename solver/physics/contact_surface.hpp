@@ -95,8 +95,8 @@ inline SurfacePair surface_pair(double dx_ij, double dy_ij, double nix, double n
 // K h^2 / 8 (K = kappa_i + kappa_j) when the contact falls half a spacing h
 // from both: 4 um at the pinion's pitch point and its 0.51 mm flank
 // spacing, as much as the whole mesh deflection at 1 kN. The mesh stiffness
-// then depended on where the contact fell between particles (docs/gears.md,
-// "Where the contact falls").
+// then depended on where the contact fell between particles (docs/contact.md,
+// "Where the contact falls between particles").
 //
 // Each particle's surface near it is its osculating parabola: in the
 // pair's frame (n from j to i, tau = z x n, origin at j's surface point,
