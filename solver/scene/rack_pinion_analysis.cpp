@@ -257,6 +257,10 @@ double add_transmission_error(nlohmann::json& a, const GearLayout& L, const Hist
         L.load_N / (c * c) / (1e3 * L.face_width_m) / (1e6 * std::abs(te_mean));
   }
   a["iso_mesh_stiffness_N_per_mm_um"] = 1e-9 * L.iso_mesh_stiffness;
+  // c'_th, the ideal elastic pair the particles model (docs/gears.md, "Which
+  // ISO number to compare with").
+  a["iso_theoretical_mesh_stiffness_N_per_mm_um"] =
+      1e-9 * L.iso_mesh_stiffness / gear::kIsoMeasuredOverTheoretical;
   return te_mean;
 }
 

@@ -240,7 +240,10 @@ export function resultView(root, id) {
       ["Max contact pressure", s.max_contact_pressure_Pa ? eng(s.max_contact_pressure_Pa, "Pa") : null,
         s.max_contact_pressure_Pa ? `Hertz on tooth ${s.max_contact_pressure_tooth}'s force, t = ${eng(s.max_contact_pressure_time_s, "s")}` : ""],
       ["Mesh stiffness", a.mesh_stiffness_N_per_mm_um !== undefined ? `${sig(a.mesh_stiffness_N_per_mm_um, 3)} N/(mm·µm)` : null,
-        a.iso_mesh_stiffness_N_per_mm_um !== undefined ? `ISO 6336-1: ${sig(a.iso_mesh_stiffness_N_per_mm_um, 3)}` : ""],
+        a.iso_mesh_stiffness_N_per_mm_um !== undefined
+          ? `ISO 6336-1: c′ ${sig(a.iso_mesh_stiffness_N_per_mm_um, 3)}` +
+            (a.iso_theoretical_mesh_stiffness_N_per_mm_um !== undefined ? `, c′th ${sig(a.iso_theoretical_mesh_stiffness_N_per_mm_um, 3)} (the elastic pair)` : "")
+          : ""],
       ["Velocity-stability time", s.velocity_stability_time_s === undefined ? null
         : s.velocity_stability_time_s < 0 ? "not settled" : eng(s.velocity_stability_time_s, "s"),
       vs.definition ? "rack velocity within ±5 %" : ""],
