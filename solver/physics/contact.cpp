@@ -414,6 +414,11 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
     const SmoothedPoint si = smooth ? smoothed[i] : SmoothedPoint{p.x[i], p.y[i], p.vx[i], p.vy[i]};
     double fx = 0.0, fy = 0.0;
     double normal_moment = 0.0;  // -dE/dtheta_i of i's surface pairs through its normal
+    // i's normal turned by its receivers' rotation (below), once for its pairs.
+    double smooth_nix = 0.0, smooth_niy = 0.0;
+    if (surface && smooth && std::isfinite(p.surf_depth[i])) {
+      smoothed_normal(p, si, i, smooth_nix, smooth_niy);
+    }
     for (std::uint32_t k = nl.rows[i]; k < nl.rows[i + 1]; ++k) {
       const std::uint32_t j = nl.j[k];
       const SmoothedPoint sj =
@@ -453,7 +458,8 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
         // positions, so that the pair's energy has a gradient the smoothing's
         // couple applies (below); otherwise by the material's rotation.
         if (smooth) {
-          smoothed_normal(p, si, i, nix, niy);
+          nix = smooth_nix;
+          niy = smooth_niy;
           smoothed_normal(p, sj, j, njx, njy);
         } else {
           nix = normal_x[i];
