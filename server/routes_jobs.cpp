@@ -398,12 +398,13 @@ Response dismiss_job(Services& s, Request& req) {
   if (before->status == JobStatus::running) {
     // The worker stops at its next check and then deletes what the run wrote.
     s.workers.cancel(id);
-  } else if (!s.workers.live(id)) {
+  } else {
     // Finished, or dismissed before (files left by a run that was stopping,
-    // or by a crash): the files go now.
+    // or by a crash): the files go now. A run still stopping writes only in
+    // its own attempt directory and removes that itself.
     std::error_code ec;
     std::filesystem::remove_all(s.jobs_dir / id, ec);
-    discard_attempts(s.jobs_dir, id);
+    if (!s.workers.live(id)) discard_attempts(s.jobs_dir, id);
   }
   const auto record = s.store.job(id);
   if (!record) return no_such_job(req);

@@ -339,6 +339,10 @@ void WorkerPool::run(const JobRecord& job, int& held) {
                          "); it starts again from the beginning when the server is back",
                      job.claim);
     } else if (cancelled) {
+      // Dismissed: this run's files go before the job says it stopped, so
+      // that a client who reads that finds none left.
+      std::error_code gone;
+      std::filesystem::remove_all(dir, gone);
       if (!store_.close_dismissed(job.id, "dismissed while running; the run stopped at " + where,
                                   last) &&
           rj->lost) {
