@@ -119,6 +119,89 @@ TEST(Fillet, PeakOfAGivenStressIsFoundBetweenSamples) {
   EXPECT_NEAR(one.along({1.0, 0.0}), 3.0, 1e-12);
 }
 
+TEST(Fillet, ReachContinuesTheOutlinePastTheSpaceCentreAndUpTheFlank) {
+  const geometry::PinionGeometry g = paper_pinion();
+  const geometry::Transform place{0.3, {0.01, -0.02}};
+  const double reach = 1e-3;
+  const ToothFillets f = tooth_fillets(g, 2, place, {1.0, 0.0}, 5e-5, reach);
+  const geometry::Polygon outline = geometry::transformed(g.outline(), place);
+  for (const FilletCurve* c : {&f.tension, &f.compression}) {
+    ASSERT_GE(c->before.size(), 20u);
+    ASSERT_EQ(c->before.size(), c->after.size());
+    std::vector<double> arc;
+    const std::vector<Point> all = with_reach(*c, &arc);
+    ASSERT_EQ(all.size(), arc.size());
+    ASSERT_EQ(all.size(), c->size() + 2 * c->before.size());
+    const std::size_t first = c->before.size();
+    EXPECT_EQ(all[first].x, c->points.front().x);
+    EXPECT_EQ(all[first + c->size() - 1].y, c->points.back().y);
+    EXPECT_LE(arc.front(), -reach);
+    EXPECT_GE(arc.back(), c->arc.back() + reach);
+    const double ds = c->arc[1] - c->arc[0];
+    for (std::size_t k = 0; k < all.size(); ++k) {
+      // On the outline, in order, a step apart (chords of a curved outline
+      // are a little shorter than their arcs).
+      EXPECT_LT(geometry::distance_to_polyline(outline, all[k], true), 1e-7) << k;
+      if (k == 0) continue;
+      EXPECT_NEAR(arc[k] - arc[k - 1], ds, 1e-12) << k;
+      EXPECT_NEAR(geometry::norm(all[k] - all[k - 1]), ds, 0.01 * ds) << k;
+    }
+    // Past the space centre the outline goes down the neighbouring tooth's
+    // fillet: the same radii as this fillet's, mirrored.
+    for (std::size_t j = 0; j < c->before.size(); ++j) {
+      EXPECT_NEAR(geometry::norm(c->before[j] - f.centre), c->radius[j + 1], 1e-9) << j;
+    }
+    // Up the flank: beyond the form circle, rising.
+    EXPECT_GT(geometry::norm(c->after.front() - f.centre), g.form_radius());
+    EXPECT_GT(geometry::norm(c->after.back() - f.centre),
+              geometry::norm(c->after.front() - f.centre));
+  }
+  // No reach: the fillets as before.
+  const ToothFillets plain = tooth_fillets(g, 2, place, {1.0, 0.0}, 5e-5);
+  EXPECT_TRUE(plain.tension.before.empty());
+  EXPECT_EQ(plain.tension.points.size(), f.tension.points.size());
+  EXPECT_EQ(plain.tension.points[7].x, f.tension.points[7].x);
+}
+
+TEST(Fillet, TangentialStressGivesThePrincipalStressesOfAFreeEdge) {
+  const geometry::PinionGeometry g = paper_pinion();
+  const ToothFillets f = tooth_fillets(g, 0, {}, {1.0, 0.0}, 1e-4);
+  // sigma_tt a parabola of arc length through zero: on the free edge
+  // sigma_1 is sigma_tt where it pulls, zero where it pushes (sigma_nn).
+  const double s_star = 0.6 * f.tension.arc.back() + 0.3e-4;
+  auto field = [&](const FilletCurve& c, double peak) {
+    std::vector<double> out;
+    for (double s : c.arc) out.push_back(peak * (1.0 - 2e6 * (s - s_star) * (s - s_star)));
+    return out;
+  };
+  const std::vector<double> t = field(f.tension, 100e6), k = field(f.compression, -60e6);
+  const FilletStress s = fillet_stress(f, t, k);
+  EXPECT_NEAR(s.tension.stress_Pa, 100e6, 1e3);
+  EXPECT_NEAR(s.tension.arc_m, s_star, 1e-8);
+  EXPECT_NEAR(s.compression.stress_Pa, -60e6, 1e3);
+  bool clipped = false;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    EXPECT_EQ(s.tension_curve[i], std::max(t[i], 0.0));
+    clipped = clipped || t[i] < 0.0;
+  }
+  EXPECT_TRUE(clipped);  // the field does change sign on the curve
+  for (std::size_t i = 0; i < k.size(); ++i) EXPECT_EQ(s.compression_curve[i], std::min(k[i], 0.0));
+  // The same as the tensor sigma_tt t t would give.
+  std::vector<PlaneStress> tt, kk;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const Point u = f.tension.tangent[i];
+    tt.push_back({t[i] * u.x * u.x, t[i] * u.y * u.y, t[i] * u.x * u.y});
+  }
+  for (std::size_t i = 0; i < k.size(); ++i) {
+    const Point u = f.compression.tangent[i];
+    kk.push_back({k[i] * u.x * u.x, k[i] * u.y * u.y, k[i] * u.x * u.y});
+  }
+  const FilletStress from_tensor = fillet_stress(f, tt, kk);
+  EXPECT_NEAR(from_tensor.tension.stress_Pa, s.tension.stress_Pa, 1e-6 * 100e6);
+  EXPECT_NEAR(from_tensor.tension.at_iso30_Pa, s.tension.at_iso30_Pa, 1e-6 * 100e6);
+  EXPECT_NEAR(from_tensor.compression.stress_Pa, s.compression.stress_Pa, 1e-6 * 60e6);
+}
+
 TEST(Fillet, ToothWindowHoldsTheToothFromTipToBelowTheRootAndNoNeighbour) {
   const geometry::PinionGeometry g = paper_pinion();
   const double pitch = kPi * g.spec().tool.module_m;

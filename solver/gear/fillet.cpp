@@ -13,21 +13,36 @@ using geometry::Point;
 constexpr double kPi = std::numbers::pi;
 
 // The right half tooth of the generating frame (axis +y) from the space
-// centre up to the form circle, cut exactly there.
-std::vector<Point> fillet_polyline(const geometry::PinionGeometry& g) {
+// centre to the tip, with a vertex exactly on the form circle, where the
+// fillet ends.
+struct HalfTooth {
+  std::vector<Point> line;
+  std::vector<double> cum;      // arc length at each vertex
+  std::size_t form_vertex = 0;  // the vertex on the form circle
+};
+
+HalfTooth half_tooth_line(const geometry::PinionGeometry& g) {
   const std::vector<Point>& half = g.half_tooth();
   const double r_end = g.form_radius();
-  std::vector<Point> out{half.front()};
+  HalfTooth h;
+  h.line.push_back(half.front());
+  bool cut = false;
   for (std::size_t k = 1; k < half.size(); ++k) {
     const double r0 = geometry::norm(half[k - 1]), r1 = geometry::norm(half[k]);
-    if (r1 >= r_end) {
+    if (!cut && r1 >= r_end) {
       const double f = r1 > r0 ? std::clamp((r_end - r0) / (r1 - r0), 0.0, 1.0) : 1.0;
-      out.push_back(half[k - 1] + f * (half[k] - half[k - 1]));
-      return out;
+      h.line.push_back(half[k - 1] + f * (half[k] - half[k - 1]));
+      h.form_vertex = h.line.size() - 1;
+      cut = true;
     }
-    out.push_back(half[k]);
+    if (geometry::norm(half[k] - h.line.back()) > 0.0) h.line.push_back(half[k]);
   }
-  throw std::runtime_error("fillet: the half tooth never reaches the form circle");
+  if (!cut) throw std::runtime_error("fillet: the half tooth never reaches the form circle");
+  h.cum.assign(h.line.size(), 0.0);
+  for (std::size_t k = 1; k < h.line.size(); ++k) {
+    h.cum[k] = h.cum[k - 1] + geometry::norm(h.line[k] - h.line[k - 1]);
+  }
+  return h;
 }
 
 // Position at arc length s along a polyline with cumulative lengths `cum`.
@@ -49,13 +64,13 @@ double segment_at(const std::vector<double>& cum, double s) {
   return cum[k] - cum[k - 1];
 }
 
-// The fillet in the generating frame, right side, resampled every `step`.
-FilletCurve generating_curve(const geometry::PinionGeometry& g, double step) {
-  const std::vector<Point> line = fillet_polyline(g);
-  std::vector<double> cum(line.size(), 0.0);
-  for (std::size_t k = 1; k < line.size(); ++k) {
-    cum[k] = cum[k - 1] + geometry::norm(line[k] - line[k - 1]);
-  }
+// The fillet in the generating frame, right side, resampled every `step`,
+// with `reach` of outline beyond either end.
+FilletCurve generating_curve(const geometry::PinionGeometry& g, double step, double reach) {
+  const HalfTooth h = half_tooth_line(g);
+  const std::size_t end = h.form_vertex + 1;
+  const std::vector<Point> line(h.line.begin(), h.line.begin() + end);
+  const std::vector<double> cum(h.cum.begin(), h.cum.begin() + end);
   const double length = cum.back();
   const std::size_t n =
       std::max<std::size_t>(3, static_cast<std::size_t>(std::ceil(length / step)) + 1);
@@ -77,6 +92,16 @@ FilletCurve generating_curve(const geometry::PinionGeometry& g, double step) {
     c.normal.push_back({t.y, -t.x});  // the walk is counter-clockwise round the gear
     c.arc.push_back(s);
   }
+  // The tooth space is symmetric about the radial line through its centre:
+  // past it lies this fillet's mirror image.
+  const Point u = (1.0 / geometry::norm(line.front())) * line.front();
+  const std::size_t beyond = static_cast<std::size_t>(std::ceil(reach / ds));
+  for (std::size_t j = 1; j <= beyond; ++j) {
+    const double s = ds * static_cast<double>(j);
+    const Point q = at_arc(h.line, h.cum, s);
+    c.before.push_back(2.0 * geometry::dot(q, u) * u - q);
+    c.after.push_back(at_arc(h.line, h.cum, length + s));
+  }
   return c;
 }
 
@@ -97,6 +122,10 @@ FilletCurve placed(const FilletCurve& gen, bool mirror, double to_gear,
     // Frame-independent: measured in the generating frame (axis +y).
     c.tangent_angle.push_back(std::atan2(std::abs(gen.tangent[i].x), std::abs(gen.tangent[i].y)));
   }
+  for (const Point& p : gen.before)
+    c.before.push_back(placement.apply(geometry::rotate(flip(p), to_gear)));
+  for (const Point& p : gen.after)
+    c.after.push_back(placement.apply(geometry::rotate(flip(p), to_gear)));
   // ISO's point: the tangent angle falls through 30 degrees once on the way up.
   const double target = kPi / 6.0;
   c.i30 = c.size() - 2;
@@ -147,11 +176,28 @@ FilletPeak peak_of(const FilletCurve& c, const std::vector<double>& v, double si
 
 }  // namespace
 
+std::vector<Point> with_reach(const FilletCurve& c, std::vector<double>* arc) {
+  const double ds = c.arc[1] - c.arc[0];
+  std::vector<Point> out(c.before.rbegin(), c.before.rend());
+  out.insert(out.end(), c.points.begin(), c.points.end());
+  out.insert(out.end(), c.after.begin(), c.after.end());
+  if (arc) {
+    arc->clear();
+    for (std::size_t j = c.before.size(); j > 0; --j) arc->push_back(-ds * static_cast<double>(j));
+    arc->insert(arc->end(), c.arc.begin(), c.arc.end());
+    for (std::size_t j = 1; j <= c.after.size(); ++j) {
+      arc->push_back(c.arc.back() + ds * static_cast<double>(j));
+    }
+  }
+  return out;
+}
+
 ToothFillets tooth_fillets(const geometry::PinionGeometry& pinion, int k,
-                           const geometry::Transform& placement, Point load_direction,
-                           double step) {
+                           const geometry::Transform& placement, Point load_direction, double step,
+                           double reach) {
   if (!(step > 0.0)) throw std::invalid_argument("fillet: the sampling step must be positive");
-  const FilletCurve gen = generating_curve(pinion, step);
+  if (!(reach >= 0.0)) throw std::invalid_argument("fillet: the reach must not be negative");
+  const FilletCurve gen = generating_curve(pinion, step, reach);
   const double to_gear = kPi + k * pinion.angular_pitch();
   FilletCurve right = placed(gen, false, to_gear, placement);
   FilletCurve left = placed(gen, true, to_gear, placement);
@@ -234,6 +280,20 @@ FilletStress fillet_stress(const ToothFillets& f, const std::vector<PlaneStress>
   for (const PlaneStress& s : compression_stress) {
     out.compression_curve.push_back(s.min_principal());
   }
+  out.tension = peak_of(f.tension, out.tension_curve, 1.0);
+  out.compression = peak_of(f.compression, out.compression_curve, -1.0);
+  return out;
+}
+
+FilletStress fillet_stress(const ToothFillets& f, const std::vector<double>& tension_tangential,
+                           const std::vector<double>& compression_tangential) {
+  if (tension_tangential.size() != f.tension.size() ||
+      compression_tangential.size() != f.compression.size()) {
+    throw std::invalid_argument("fillet_stress: one stress per fillet sample");
+  }
+  FilletStress out;
+  for (double s : tension_tangential) out.tension_curve.push_back(std::max(s, 0.0));
+  for (double s : compression_tangential) out.compression_curve.push_back(std::min(s, 0.0));
   out.tension = peak_of(f.tension, out.tension_curve, 1.0);
   out.compression = peak_of(f.compression, out.compression_curve, -1.0);
   return out;

@@ -34,8 +34,18 @@ struct FilletCurve {
   // ISO's 30-degree point, interpolated between samples i30 and i30 + 1.
   std::size_t i30 = 0;
   double f30 = 0.0;
+  // The outline beyond both ends at the same step, nearest first: `before`
+  // past the space centre (the neighbouring tooth's fillet, the mirror image
+  // of this one), `after` up the flank. A derivative along the fillet (its
+  // stretch) then needs no one-sided window at either end.
+  std::vector<geometry::Point> before, after;
   std::size_t size() const { return points.size(); }
 };
+
+// The fillet with its reach (FilletCurve::before, after) as one curve in
+// order along the outline; `arc` gets each point's arc length (negative
+// past the space centre). The fillet's own samples start at before.size().
+std::vector<geometry::Point> with_reach(const FilletCurve& c, std::vector<double>* arc);
 
 // The two fillets of one tooth, placed in the world.
 struct ToothFillets {
@@ -46,11 +56,12 @@ struct ToothFillets {
 };
 
 // Tooth k of `pinion` (gear frame of gear_profile.hpp) placed by `placement`,
-// sampled every `step` metres. The tension side is the one whose flank the
-// force `load_direction` (world, the force on the tooth) pushes into.
+// sampled every `step` metres, with `reach` metres of outline beyond either
+// end. The tension side is the one whose flank the force `load_direction`
+// (world, the force on the tooth) pushes into.
 ToothFillets tooth_fillets(const geometry::PinionGeometry& pinion, int k,
                            const geometry::Transform& placement, geometry::Point load_direction,
-                           double step);
+                           double step, double reach = 0.0);
 
 // The involute flank that the force `load_direction` pushes into, from the
 // form circle to the tip (tooth k placed as in tooth_fillets): where a
@@ -99,5 +110,11 @@ struct FilletStress {
 // sample and its neighbours.
 FilletStress fillet_stress(const ToothFillets& f, const std::vector<PlaneStress>& tension_stress,
                            const std::vector<PlaneStress>& compression_stress);
+
+// The same from the tangential stress sigma_tt alone, one per sample: on the
+// traction-free fillet the in-plane stress is sigma_tt t t, so sigma_1 is
+// max(sigma_tt, 0) and sigma_3 min(sigma_tt, 0).
+FilletStress fillet_stress(const ToothFillets& f, const std::vector<double>& tension_tangential,
+                           const std::vector<double>& compression_tangential);
 
 }  // namespace gearsph::gear

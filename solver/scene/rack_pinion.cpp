@@ -33,6 +33,9 @@ constexpr double kRackFlankOverFine = 2.0;
 // against FE with the arrangement; capped at 3 : 1, -5.4 to -2.8 %
 // (docs/gears.md, "Pinions the defaults were not made on").
 constexpr double kBulkOverFineMax = 3.0;
+// Half-width of the arc over which a fillet's stretch is differentiated, in
+// fillet spacings.
+constexpr double kFilletStretchWindow = 3.0;
 
 double deg(double d) {
   return d * kPi / 180.0;
@@ -631,17 +634,20 @@ std::vector<int> assign_teeth(const Simulation& sim, const GearLayout& L, double
 
 // The fillets and critical section of every modelled tooth, where the
 // stress is recovered; fillet curves sampled at a fifth of the finest
-// spacing there.
+// spacing there, their stretch differentiated over three of those spacings
+// either side (the stress fit's reach; docs/validation.md, Kirsch).
 std::shared_ptr<const RootMonitor> monitor_roots(const Simulation& sim, const GearLayout& L,
                                                  const geometry::PinionGeometry& pinion,
                                                  const geometry::MeshPlacement& place,
                                                  double fine) {
+  const double window = kFilletStretchWindow * fine;
   std::vector<gear::ToothFillets> fillets;
   for (int k : L.pinion_teeth) {
     fillets.push_back(
-        gear::tooth_fillets(pinion, k, place.pinion, load_on_tooth(L, k), 0.2 * fine));
+        gear::tooth_fillets(pinion, k, place.pinion, load_on_tooth(L, k), 0.2 * fine, window));
   }
-  return std::make_shared<const RootMonitor>(sim, 0, L.pinion_teeth, std::move(fillets), 1);
+  return std::make_shared<const RootMonitor>(sim, 0, L.pinion_teeth, std::move(fillets), 1, window,
+                                             L.fitted);
 }
 
 // The probe particles (rack_pinion.hpp, GearProbes) nearest the tooth in

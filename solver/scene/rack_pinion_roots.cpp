@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "solver/core/simulation.hpp"
+#include "solver/diagnostics/edge_stress.hpp"
 
 namespace gearsph::scenes {
 
@@ -17,22 +18,37 @@ geometry::Point at_fraction(const gear::FilletCurve& c) {
   return a + c.f30 * (b - a);
 }
 
-std::vector<gear::PlaneStress> plane(const std::vector<diagnostics::RecoveredStress>& r) {
+// The stress tensor at the fillet's own samples (past the reach).
+std::vector<gear::PlaneStress> plane(const std::vector<diagnostics::RecoveredStress>& r,
+                                     std::size_t first, std::size_t n) {
   std::vector<gear::PlaneStress> out;
-  out.reserve(r.size());
-  for (const diagnostics::RecoveredStress& s : r) out.push_back({s.xx, s.yy, s.xy});
+  out.reserve(n);
+  for (std::size_t k = first; k < first + n; ++k) out.push_back({r[k].xx, r[k].yy, r[k].xy});
   return out;
 }
 
 }  // namespace
 
 RootMonitor::RootMonitor(const Simulation& sim, int body, std::vector<int> teeth,
-                         std::vector<gear::ToothFillets> fillets, int hub_motion)
-    : teeth_(std::move(teeth)), fillets_(std::move(fillets)), hub_motion_(hub_motion) {
+                         std::vector<gear::ToothFillets> fillets, int hub_motion, double window,
+                         bool from_stretch)
+    : teeth_(std::move(teeth)),
+      fillets_(std::move(fillets)),
+      hub_motion_(hub_motion),
+      window_(window),
+      from_stretch_(from_stretch),
+      E_(sim.bodies.at(static_cast<std::size_t>(body)).material.E),
+      nu_(sim.bodies.at(static_cast<std::size_t>(body)).material.nu) {
+  auto edge = [&sim, body](const gear::FilletCurve& c) {
+    Edge e;
+    e.points = gear::with_reach(c, &e.arc);
+    e.first = c.before.size();
+    e.recovery = std::make_unique<diagnostics::StressRecovery>(sim, body, e.points);
+    return e;
+  };
   for (const gear::ToothFillets& f : fillets_) {
-    tension_.push_back(std::make_unique<diagnostics::StressRecovery>(sim, body, f.tension.points));
-    compression_.push_back(
-        std::make_unique<diagnostics::StressRecovery>(sim, body, f.compression.points));
+    tension_.push_back(edge(f.tension));
+    compression_.push_back(edge(f.compression));
     // The chord between the two 30-degree points, sampled evenly; its ends
     // lie on the outline, where the recovery interpolates the outline row.
     Section sec;
@@ -59,18 +75,35 @@ const std::vector<ToothRootState>& RootMonitor::at(const Simulation& sim) const 
   for (std::size_t t = 0; t < fillets_.size(); ++t) {
     const gear::ToothFillets& f = fillets_[t];
     ToothRootState& st = state_[t];
-    const std::vector<gear::PlaneStress> compression = plane(compression_[t]->recover(sim));
-    st.fillet = gear::fillet_stress(f, plane(tension_[t]->recover(sim)), compression);
-    // sigma_1 of either fillet at its 30-degree point.
-    const auto at30 = [](const std::vector<double>& v, const gear::FilletCurve& c) {
-      return v[c.i30] + c.f30 * (v[c.i30 + 1] - v[c.i30]);
-    };
-    std::vector<double> compression_sigma1;
-    for (const gear::PlaneStress& s : compression) {
-      compression_sigma1.push_back(s.max_principal());
+    // Tangential stress from the stretch of each fillet, and the fitted
+    // tensor at its samples.
+    std::vector<double> tangential[2];
+    std::vector<gear::PlaneStress> tensor[2];
+    for (int side = 0; side < 2; ++side) {
+      const Edge& e = side == 0 ? tension_[t] : compression_[t];
+      const std::size_t n = side == 0 ? f.tension.size() : f.compression.size();
+      const std::vector<diagnostics::RecoveredStress> r = e.recovery->recover(sim);
+      diagnostics::EdgeCurve curve{e.points, {}, e.arc, false};
+      for (const diagnostics::RecoveredStress& q : r) curve.displacement.push_back({q.ux, q.uy});
+      const std::vector<double> tt = diagnostics::edge_tangential_stress(curve, window_, E_, nu_);
+      tangential[side].assign(tt.begin() + static_cast<std::ptrdiff_t>(e.first),
+                              tt.begin() + static_cast<std::ptrdiff_t>(e.first + n));
+      tensor[side] = plane(r, e.first, n);
     }
-    st.root_stress_Pa =
-        std::max(st.fillet.tension.at_iso30_Pa, at30(compression_sigma1, f.compression));
+    const gear::FilletStress stretch = gear::fillet_stress(f, tangential[0], tangential[1]);
+    st.fillet_stress_fit = gear::fillet_stress(f, tensor[0], tensor[1]);
+    st.fillet = from_stretch_ ? stretch : st.fillet_stress_fit;
+    // sigma_1 of either fillet at its 30-degree point (either flank may
+    // carry load: rattle in the backlash).
+    const gear::FilletCurve& cc = f.compression;
+    const double compression_at30 =
+        from_stretch_
+            ? std::max(tangential[1][cc.i30] +
+                           cc.f30 * (tangential[1][cc.i30 + 1] - tangential[1][cc.i30]),
+                       0.0)
+            : tensor[1][cc.i30].max_principal() + cc.f30 * (tensor[1][cc.i30 + 1].max_principal() -
+                                                            tensor[1][cc.i30].max_principal());
+    st.root_stress_Pa = std::max(st.fillet.tension.at_iso30_Pa, compression_at30);
     // Normal stress across the section (along the tooth axis, turned with
     // the hub), integrated by the trapezoidal rule.
     const Section& sec = sections_[t];

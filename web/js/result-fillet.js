@@ -52,9 +52,13 @@ function peaksTable(check, comparison) {
 // What the table's last column means, and what else the reader should know.
 function tableNote(check, summary, comparison) {
   const iso = Number.isFinite(check.iso_sigma_F0_Pa) ? eng(check.iso_sigma_F0_Pa, "Pa") : null;
+  // How the SPH values were read (docs/gears.md, "Where the stress is read").
+  const reading = check.fillet_reading === "stretch"
+    ? "SPH read from the fillet's stretch (σ = E/(1 − ν²) ε along the free edge). "
+    : check.fillet_reading === "stress_fit" ? "SPH read from a fit of the particles' stress. " : "";
   if (comparison) {
     const d = comparison.coarse_fine_difference?.fillet_tension_peak_Pa?.relative_difference;
-    return [
+    return reading + [
       "error = (SPH − FE) / |FE|, FE (gmsh + CalculiX) on its finest fillet mesh",
       comparison.fe_fillet_size_m > 0 ? ` (${Number((comparison.fe_fillet_size_m * 1e3).toPrecision(3))} mm elements)` : "",
       Number.isFinite(d) ? `, whose tension peak is within ${Math.abs(100 * d).toFixed(2)} % of the coarser mesh's` : "",
@@ -63,7 +67,7 @@ function tableNote(check, summary, comparison) {
     ].join("");
   }
   const fe = summary.fe_comparison;
-  return "difference = (SPH − σF0) / σF0, σF0 by ISO 6336-3 method B for the load radius, at the 30° tangent point." +
+  return reading + "difference = (SPH − σF0) / σF0, σF0 by ISO 6336-3 method B for the load radius, at the 30° tangent point." +
     (fe?.status ? ` FE check: ${fe.status}${fe.message ? `, ${fe.message}` : ""}.` : "");
 }
 
