@@ -313,6 +313,39 @@ TEST(Contact, CurvedOutlinesTouchOnceAtTheirOverlapWhereverTheContactFalls) {
   EXPECT_FALSE(physics::curved_pair(1.0 / 8e-3, 1.0 / 0.5e-3, h_i, h_j));  // a rounded corner
 }
 
+// A convex flank against a slightly concave one (a rack flank beside its
+// root fillet): drawn apart step by step, a pair's overlap falls to zero
+// and only then does the pair let go. The early rejection of pairs that are
+// apart once ignored the concave parabola's sag inside its tangent line,
+// and dropped pairs that still overlapped by a quarter of a micron, with
+// their energy: a static check at coarse flanks gained energy until the
+// health check stopped it.
+TEST(Contact, CurvedPairLetsGoOnlyWhenItsOverlapDoes) {
+  const double h_i = 0.72e-3, h_j = 0.93e-3;
+  const double kappa_i = 75.0, kappa_j = -2.2;  // 1/m: an involute, a nearly straight flank
+  int released = 0;
+  for (const double tilt : {0.0, 0.02, -0.03}) {
+    // j's normal along +y, i's opposed and tilted; i sits above j,
+    // offset along the surface.
+    const double ni_x = std::sin(tilt), ni_y = -std::cos(tilt);
+    for (const double along : {0.2e-3, 0.5e-3, 0.8e-3}) {
+      double last = -1.0;
+      for (int k = 0; k < 4000; ++k) {
+        const double gap = -2e-6 + 1e-9 * k;  // from 2 um of overlap to 2 um apart
+        const physics::SurfacePair sp = physics::curved_surface_pair(
+            along, gap, ni_x, ni_y, 0.0, 1.0, kappa_i, kappa_j, h_i, h_j);
+        const double overlap = sp.active ? sp.overlap : 0.0;
+        if (last > 0.0 && overlap == 0.0) {
+          ++released;
+          EXPECT_LT(last, 2e-9) << "tilt " << tilt << ", along " << along << ", gap " << gap;
+        }
+        last = overlap;
+      }
+    }
+  }
+  EXPECT_GE(released, 3);
+}
+
 // The smoothing tables (contact_smoothing.hpp): each source's weights are a
 // partition of unity over its own body's surface, the receivers' table is
 // their transpose, and a smoothed point follows its particle through a

@@ -130,12 +130,16 @@ inline SurfacePair curved_surface_pair(double dx_ij, double dy_ij, double nix, d
   const double c = 0.5 * len;  // n_j . n, the cosine of either normal's tilt
   const double alpha = (njx * tx + njy * ty) / c;
   const double dn = dx_ij * nx + dy_ij * ny;
-  // Each parabola lies beyond its tangent line, and over both hats
-  // |2 t - d_t| < h_i + h_j: apart by this bound, the pair is apart (most
-  // candidates, before the curvature's work).
-  if (dn >= std::abs(alpha) * (h_i + h_j)) return s;
-  const double dt = dx_ij * tx + dy_ij * ty;
+  // A convex parabola lies beyond its tangent line, a concave one (a flank
+  // beside its root fillet) within it by at most |kappa| h^2 / 2 over its
+  // hat, and over both hats |2 t - d_t| < h_i + h_j: apart by this bound,
+  // the pair is apart (most candidates, before the curvature's work).
+  // Without the concave term the bound cut pairs that overlapped, and their
+  // energy went with them.
   const double stretch = (1.0 + alpha * alpha) * std::sqrt(1.0 + alpha * alpha);
+  const double sag = std::min(kappa_i, 0.0) * h_i * h_i + std::min(kappa_j, 0.0) * h_j * h_j;
+  if (dn >= std::abs(alpha) * (h_i + h_j) - 0.5 * stretch * sag) return s;
+  const double dt = dx_ij * tx + dy_ij * ty;
   const double ki = kappa_i * stretch, kj = kappa_j * stretch, k = ki + kj;
   const double t = (ki * dt - 2.0 * alpha) / k;
   const double hat_i = 1.0 - std::abs(t - dt) / h_i, hat_j = 1.0 - std::abs(t) / h_j;
