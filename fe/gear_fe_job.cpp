@@ -47,12 +47,18 @@ GearFeJob read_gear_fe_job(const nlohmann::json& job) {
   tool.pressure_angle_rad = pj.at("pressure_angle_deg").get<double>() * std::numbers::pi / 180.0;
   tool.addendum_coef = pj.at("addendum_coef").get<double>();
   tool.dedendum_coef = pj.at("dedendum_coef").get<double>();
-  tool.root_radius_coef = pj.at("cutter_tip_radius_coef").get<double>();
   GearFeCase& c = out.model;
   c.pinion.teeth = pj.at("teeth").get<int>();
-  c.pinion.tool = tool;
   c.pinion.profile_shift = pj.at("profile_shift").get<double>();
   c.pinion.backlash_m = 1e-3 * pj.at("backlash_mm").get<double>();
+  // The SPH scene's rule (rack_pinion.cpp): given, or ISO 53's where it
+  // fits both the pinion's and the rack's tooth space.
+  const double rack_backlash_m = 1e-3 * rj.value("backlash_mm", 0.0);
+  tool.root_radius_coef =
+      pj.contains("cutter_tip_radius_coef")
+          ? pj.at("cutter_tip_radius_coef").get<double>()
+          : tool.default_root_radius_coef(std::min(c.pinion.backlash_m, rack_backlash_m));
+  c.pinion.tool = tool;
   out.module_m = tool.module_m;
   out.pressure_angle = tool.pressure_angle_rad;
   std::optional<geometry::PinionGeometry> pinion;

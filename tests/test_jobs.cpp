@@ -238,6 +238,33 @@ TEST(Jobs, AResolvedContactIsAskedOnlyWhereItApplies) {
       << describe(issues);
 }
 
+// ISO 53's cutter tip radius (0.38 modules) does not fit a 25-degree tooth
+// space at the standard depths: a job that gives none gets nine tenths of
+// the largest that fits both the pinion's and the rack's space, and says so;
+// one that gives too large a radius is told the largest.
+TEST(Jobs, CutterTipRadiusFollowsThePressureAngle) {
+  json job = {{"scene",
+               {{"type", "rack_pinion"},
+                {"quasi_static", true},
+                {"pinion", {{"omega_rad_s", 0.0}, {"teeth", 18}, {"pressure_angle_deg", 25}}},
+                {"rack", {{"load_N", 1000.0}, {"velocity_m_s", 0.0}}}}}};
+  const PreparedJob prepared = prepare_job(job, 1);
+  const double coef =
+      prepared.scene.description.at("pinion").at("cutter_tip_radius_coef").get<double>();
+  EXPECT_GT(coef, 0.25);
+  EXPECT_LT(coef, 0.33);
+  // At 20 degrees, ISO 53's own.
+  job["scene"]["pinion"]["pressure_angle_deg"] = 20;
+  EXPECT_EQ(
+      prepare_job(job, 1).scene.description.at("pinion").at("cutter_tip_radius_coef").get<double>(),
+      0.38);
+  job["scene"]["pinion"]["pressure_angle_deg"] = 25;
+  job["scene"]["pinion"]["cutter_tip_radius_coef"] = 0.4;
+  const auto issues = issues_of(job);
+  EXPECT_TRUE(has_issue(issues, "/scene/pinion/cutter_tip_radius_coef", "the largest is 0.3"))
+      << describe(issues);
+}
+
 TEST(Jobs, FixedTimeStepAboveTheLimitIsRefusedWithTheLimit) {
   json job = kPlate;
   job["time"]["dt_s"] = 1e-3;

@@ -1,6 +1,8 @@
 #include "solver/geometry/basic_rack.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -18,6 +20,15 @@ double BasicRack::max_root_radius(double widening) const {
   return half_space_at_root * std::cos(a) / (1.0 - std::sin(a));
 }
 
+double BasicRack::default_root_radius_coef(double widening) const {
+  constexpr double kIso53A = 0.38;
+  // Nine tenths of the largest: the two fillets of a space then leave a root
+  // land between them. At the largest they meet in a point of the outline
+  // (the FE check's mesher made an inverted element there).
+  constexpr double kOfLargest = 0.9;
+  return std::min(kIso53A, kOfLargest * max_root_radius(widening) / module_m);
+}
+
 void BasicRack::validate(double widening) const {
   auto fail = [](const std::string& what) {
     throw std::invalid_argument("basic rack profile: " + what);
@@ -30,9 +41,12 @@ void BasicRack::validate(double widening) const {
   if (!(dedendum_coef >= addendum_coef)) fail("dedendum must not be shorter than the addendum");
   if (!(root_radius_coef >= 0.0)) fail("root fillet radius must not be negative");
   if (root_radius() > max_root_radius(widening)) {
-    fail("root fillet radius " + std::to_string(root_radius_coef) +
-         " m does not fit the space (largest " +
-         std::to_string(max_root_radius(widening) / module_m) + " m)");
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "the cutter's tip radius coefficient rho_fP* %.3f does not fit the tooth space "
+                  "(the largest, where the two fillets meet, is %.3f)",
+                  root_radius_coef, max_root_radius(widening) / module_m);
+    fail(text);
   }
   if (straight_flank_depth() <= -addendum()) fail("fillets leave no straight flank");
 }

@@ -6,6 +6,7 @@
 // and may carry a resisting force.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <sstream>
 
@@ -127,18 +128,34 @@ GearLayout read_gear_layout(const SceneInput& in) {
 }
 
 // The pinion the job's ISO 53 rack cutter generates (geometry/gear_profile.hpp).
-geometry::PinionGeometry generate_pinion(const nlohmann::json& pj, const GearLayout& L) {
+// The mating rack has the cutter's profile with its own backlash
+// (build_rack): a default tip radius must fit both tooth spaces.
+geometry::PinionGeometry generate_pinion(const nlohmann::json& pj, const GearLayout& L,
+                                         double rack_backlash_m) {
   geometry::BasicRack tool;
   tool.module_m = L.module_m;
   tool.pressure_angle_rad = L.pressure_angle;
   tool.addendum_coef = pj.at("addendum_coef").get<double>();
   tool.dedendum_coef = pj.at("dedendum_coef").get<double>();
-  tool.root_radius_coef = pj.at("cutter_tip_radius_coef").get<double>();
   geometry::PinionSpec ps;
   ps.teeth = L.teeth;
-  ps.tool = tool;
   ps.profile_shift = pj.at("profile_shift").get<double>();
   ps.backlash_m = 1e-3 * pj.at("backlash_mm").get<double>();
+  if (pj.contains("cutter_tip_radius_coef")) {
+    tool.root_radius_coef = pj.at("cutter_tip_radius_coef").get<double>();
+    if (tool.root_radius() > tool.max_root_radius(ps.backlash_m)) {
+      char text[200];
+      std::snprintf(
+          text, sizeof text,
+          "%.3f does not fit the tooth space of this pressure angle and these depths: "
+          "the largest is %.3f, where the two fillets meet (left out, it is nine tenths of that)",
+          tool.root_radius_coef, tool.max_root_radius(ps.backlash_m) / tool.module_m);
+      throw JobError("/scene/pinion/cutter_tip_radius_coef", text);
+    }
+  } else {
+    tool.root_radius_coef = tool.default_root_radius_coef(std::min(ps.backlash_m, rack_backlash_m));
+  }
+  ps.tool = tool;
   try {
     return geometry::PinionGeometry(ps);
   } catch (const std::invalid_argument& e) {
@@ -698,6 +715,7 @@ nlohmann::json describe_pinion(const Simulation& sim, const nlohmann::json& pj, 
           {"tip_radius_m", L.tip_radius},
           {"root_radius_m", L.root_radius},
           {"form_radius_m", L.form_radius},
+          {"cutter_tip_radius_coef", pinion.spec().tool.root_radius_coef},
           {"undercut", pinion.undercut()},
           {"pitch_thickness_m", pinion.pitch_thickness()},
           {"deformable_from_radius_m", r_drive},
@@ -747,7 +765,8 @@ Scene build_rack_pinion(const SceneInput& in) {
   const nlohmann::json& s = in.scene;
   const nlohmann::json& pj = s.at("pinion");
   GearLayout L = read_gear_layout(in);
-  const geometry::PinionGeometry pinion = generate_pinion(pj, L);
+  const geometry::PinionGeometry pinion =
+      generate_pinion(pj, L, 1e-3 * s.at("rack").at("backlash_mm").get<double>());
   set_pinion_references(L, pinion);
 
   Scene scene = start_scene("rack_pinion", in);
