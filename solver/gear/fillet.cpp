@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 namespace gearsph::gear {
 
@@ -269,34 +270,38 @@ double PlaneStress::along(Point t) const {
   return t.x * t.x * xx + 2.0 * t.x * t.y * xy + t.y * t.y * yy;
 }
 
-FilletStress fillet_stress(const ToothFillets& f, const std::vector<PlaneStress>& tension_stress,
-                           const std::vector<PlaneStress>& compression_stress) {
-  if (tension_stress.size() != f.tension.size() ||
-      compression_stress.size() != f.compression.size()) {
+namespace {
+
+// The peaks of the two curves, one value per sample of each fillet.
+FilletStress from_curves(const ToothFillets& f, std::vector<double> tension,
+                         std::vector<double> compression) {
+  if (tension.size() != f.tension.size() || compression.size() != f.compression.size()) {
     throw std::invalid_argument("fillet_stress: one stress per fillet sample");
   }
   FilletStress out;
-  for (const PlaneStress& s : tension_stress) out.tension_curve.push_back(s.max_principal());
-  for (const PlaneStress& s : compression_stress) {
-    out.compression_curve.push_back(s.min_principal());
-  }
-  out.tension = peak_of(f.tension, out.tension_curve, 1.0);
-  out.compression = peak_of(f.compression, out.compression_curve, -1.0);
+  out.tension = peak_of(f.tension, tension, 1.0);
+  out.compression = peak_of(f.compression, compression, -1.0);
+  out.tension_curve = std::move(tension);
+  out.compression_curve = std::move(compression);
   return out;
+}
+
+}  // namespace
+
+FilletStress fillet_stress(const ToothFillets& f, const std::vector<PlaneStress>& tension_stress,
+                           const std::vector<PlaneStress>& compression_stress) {
+  std::vector<double> tension, compression;
+  for (const PlaneStress& s : tension_stress) tension.push_back(s.max_principal());
+  for (const PlaneStress& s : compression_stress) compression.push_back(s.min_principal());
+  return from_curves(f, std::move(tension), std::move(compression));
 }
 
 FilletStress fillet_stress(const ToothFillets& f, const std::vector<double>& tension_tangential,
                            const std::vector<double>& compression_tangential) {
-  if (tension_tangential.size() != f.tension.size() ||
-      compression_tangential.size() != f.compression.size()) {
-    throw std::invalid_argument("fillet_stress: one stress per fillet sample");
-  }
-  FilletStress out;
-  for (double s : tension_tangential) out.tension_curve.push_back(std::max(s, 0.0));
-  for (double s : compression_tangential) out.compression_curve.push_back(std::min(s, 0.0));
-  out.tension = peak_of(f.tension, out.tension_curve, 1.0);
-  out.compression = peak_of(f.compression, out.compression_curve, -1.0);
-  return out;
+  std::vector<double> tension, compression;
+  for (double s : tension_tangential) tension.push_back(std::max(s, 0.0));
+  for (double s : compression_tangential) compression.push_back(std::min(s, 0.0));
+  return from_curves(f, std::move(tension), std::move(compression));
 }
 
 }  // namespace gearsph::gear
