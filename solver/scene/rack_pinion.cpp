@@ -198,12 +198,13 @@ struct GearSpacings {
 
 // Spacings follow the gear, not a number: the bulk a quarter of the
 // module (the seed paper's 1 mm at module 4; body-fitted, at most three
-// fillet spacings), and body-fitted particles a
-// seventh of the root fillet radius rho_F at the fillets, where the
-// stress varies over that length: the fillet peak within 5 % of a
-// converged finite-element solution (docs/gears.md: rho_F/5 reads it
-// 12 % low). The active flanks, where the teeth touch, take 1.5 times
-// that on the pinion and twice on the rack.
+// fillet spacings), and body-fitted particles a seventh of the root fillet
+// radius rho_F at the fillets, where the stress varies over that length.
+// A fit of the particles' stress needed it: at rho_F / 5 it read the peak
+// 12 % low. Read from the fillet's stretch, rho_F / 5 is within 4 % of FE
+// too, at a longer stable step (docs/speed-accuracy.md, fifteenth round:
+// measured, not yet the default). The active flanks, where the teeth touch,
+// take 1.5 times that on the pinion and twice on the rack.
 GearSpacings choose_spacings(Simulation& sim, const Discretization& job, GearLayout& L) {
   const bool fitted =
       particle_layout(job, ParticleLayout::BodyFitted) == ParticleLayout::BodyFitted;
