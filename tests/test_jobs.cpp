@@ -263,6 +263,12 @@ TEST(Jobs, CutterTipRadiusFollowsThePressureAngle) {
   const auto issues = issues_of(job);
   EXPECT_TRUE(has_issue(issues, "/scene/pinion/cutter_tip_radius_coef", "the largest is 0.3"))
       << describe(issues);
+  // One that fits the pinion's space (widened by its backlash) but not the
+  // rack's is refused at the same field, not as a rack that cannot be built.
+  job["scene"]["pinion"]["cutter_tip_radius_coef"] = 0.33;
+  const auto narrow = issues_of(job);
+  EXPECT_TRUE(has_issue(narrow, "/scene/pinion/cutter_tip_radius_coef", "the largest is 0.31"))
+      << describe(narrow);
 }
 
 TEST(Jobs, FixedTimeStepAboveTheLimitIsRefusedWithTheLimit) {

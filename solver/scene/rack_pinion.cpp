@@ -141,19 +141,20 @@ geometry::PinionGeometry generate_pinion(const nlohmann::json& pj, const GearLay
   ps.teeth = L.teeth;
   ps.profile_shift = pj.at("profile_shift").get<double>();
   ps.backlash_m = 1e-3 * pj.at("backlash_mm").get<double>();
+  const double widening = std::min(ps.backlash_m, rack_backlash_m);
   if (pj.contains("cutter_tip_radius_coef")) {
     tool.root_radius_coef = pj.at("cutter_tip_radius_coef").get<double>();
-    if (tool.root_radius() > tool.max_root_radius(ps.backlash_m)) {
+    if (tool.root_radius() > tool.max_root_radius(widening)) {
       char text[200];
       std::snprintf(
           text, sizeof text,
           "%.3f does not fit the tooth space of this pressure angle and these depths: "
           "the largest is %.3f, where the two fillets meet (left out, it is nine tenths of that)",
-          tool.root_radius_coef, tool.max_root_radius(ps.backlash_m) / tool.module_m);
+          tool.root_radius_coef, tool.max_root_radius(widening) / tool.module_m);
       throw JobError("/scene/pinion/cutter_tip_radius_coef", text);
     }
   } else {
-    tool.root_radius_coef = tool.default_root_radius_coef(std::min(ps.backlash_m, rack_backlash_m));
+    tool.root_radius_coef = tool.default_root_radius_coef(widening);
   }
   ps.tool = tool;
   try {
