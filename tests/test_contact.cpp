@@ -346,6 +346,90 @@ TEST(Contact, CurvedPairLetsGoOnlyWhenItsOverlapDoes) {
   EXPECT_GE(released, 3);
 }
 
+// A corner's tangent-line pair (contact_surface.hpp, surface_pair) between
+// outline particles starts where they come within dx of each other. A rack
+// tip corner, its normal turned 60 degrees, meets a flank particle whose
+// tangent line it already crosses by 35 um there: the pair's weight must be
+// zero at that distance, so that its energy grows from nothing. The hat of
+// the lateral offset was 0.06 there, and the paper's meshing case with a
+// coarse rack corner stopped at 7.7 ms on the energy it made.
+TEST(Contact, OutlinePairStartsWithNoWeightEvenWhereItsCornerAlreadyOverlaps) {
+  const double dx = 1e-3, a = 25.0 * std::numbers::pi / 180, b = 60.0 * std::numbers::pi / 180;
+  const double njx = -std::sin(a), njy = std::cos(a);  // the flank's normal
+  const double nix = std::sin(b), niy = -std::cos(b);  // the corner's
+  const double ex = 0.92 / std::hypot(0.92, 0.39), ey = 0.39 / std::hypot(0.92, 0.39);
+  auto pair = [&](double r, bool on_outline) {
+    return physics::surface_pair(r * ex, r * ey, nix, niy, njx, njy, 0.0, 0.0, dx, on_outline);
+  };
+  const physics::SurfacePair lateral = pair(0.999 * dx, false);
+  ASSERT_TRUE(lateral.active);
+  EXPECT_GT(lateral.overlap, 30e-6);
+  EXPECT_GT(lateral.weight, 0.05);  // what made the energy jump
+  for (const double r : {0.999 * dx, 0.99 * dx, 0.9 * dx, 0.5 * dx}) {
+    const physics::SurfacePair sp = pair(r, true);
+    ASSERT_TRUE(sp.active);
+    EXPECT_NEAR(sp.weight, 1.0 - r / dx, 1e-12);
+    // The weight's gradient, as the force uses it, against a central
+    // difference in both directions.
+    const double eps = 1e-9;
+    for (const double angle : {0.0, 1.3}) {
+      const double ux = std::cos(angle), uy = std::sin(angle);
+      auto w_at = [&](double sgn) {
+        return physics::surface_pair(r * ex + sgn * eps * ux, r * ey + sgn * eps * uy, nix, niy,
+                                     njx, njy, 0.0, 0.0, dx, true)
+            .weight;
+      };
+      const double fd = (w_at(1.0) - w_at(-1.0)) / (2.0 * eps);
+      EXPECT_NEAR(sp.dweight * (sp.tx * ux + sp.ty * uy), fd, 1e-3 * std::abs(1.0 / dx));
+    }
+  }
+  EXPECT_FALSE(pair(1.001 * dx, true).active);
+
+  // Along a flat row of partners dx apart, touching by 1 um, the weights
+  // still sum to one within the overlap over dx.
+  for (const double shift : {0.0, 0.3, 0.77}) {
+    double sum = 0.0;
+    for (int k = -2; k <= 2; ++k) {
+      const physics::SurfacePair sp =
+          physics::surface_pair((k + shift) * dx, -1e-6, 0.0, -1.0, 0.0, 1.0, 0.0, 0.0, dx, true);
+      if (sp.active) sum += sp.weight;
+    }
+    EXPECT_LE(std::abs(sum - 1.0), 1e-6 / dx + 1e-12) << "shift " << shift;
+  }
+}
+
+// A flank particle low on the pinion's flank (radius of curvature 2.5 mm)
+// meets a rack tip corner passing in the backlash: the corner is 0.05 mm
+// clear of the flank's true surface but 0.15 mm inside its tangent line,
+// 1 mm along it. Measured from the flank's parabola the pair is apart;
+// where they do overlap, the overlap's gradient is the force's direction.
+TEST(Contact, TangentLinePairMeasuresFromAFlanksParabola) {
+  const double dx = 1e-3, kappa = 1.0 / 2.5e-3;
+  const double njx = 0.0, njy = 1.0;  // the flank particle j at the origin
+  const double b = 50.0 * std::numbers::pi / 180;
+  const double nix = std::sin(b), niy = -std::cos(b);  // the corner's normal
+  auto pair = [&](double x, double y, double kj) {
+    return physics::surface_pair(x, y, nix, niy, njx, njy, 0.0, 0.0, dx, true, 0.0, kj);
+  };
+  // The flank's surface at x is -kappa x^2 / 2: 0.2 mm below the line at 1 mm.
+  const double x = 0.95e-3, clear = -0.5 * kappa * x * x + 0.05e-3;
+  EXPECT_TRUE(pair(x, clear, 0.0).active);     // inside the tangent line
+  EXPECT_FALSE(pair(x, clear, kappa).active);  // clear of the surface
+  // 0.02 mm into the surface: an overlap of that much, less the slope's
+  // second-order part, and its gradient.
+  const double into = -0.5 * kappa * x * x - 0.02e-3;
+  const physics::SurfacePair sp = pair(x, into, kappa);
+  ASSERT_TRUE(sp.active);
+  EXPECT_NEAR(sp.overlap, 0.02e-3, 1e-9);
+  const double eps = 1e-10;
+  const double dgx =
+      (pair(x + eps, into, kappa).overlap - pair(x - eps, into, kappa).overlap) / (2.0 * eps);
+  const double dgy =
+      (pair(x, into + eps, kappa).overlap - pair(x, into - eps, kappa).overlap) / (2.0 * eps);
+  EXPECT_NEAR(-dgx, sp.nx, 1e-5);
+  EXPECT_NEAR(-dgy, sp.ny, 1e-5);
+}
+
 // The smoothing tables (contact_smoothing.hpp): each source's weights are a
 // partition of unity over its own body's surface, the receivers' table is
 // their transpose, and a smoothed point follows its particle through a

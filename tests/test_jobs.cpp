@@ -271,6 +271,22 @@ TEST(Jobs, CutterTipRadiusFollowsThePressureAngle) {
       << describe(narrow);
 }
 
+// The paper's lattice runs as published, at its 4e-8 s; body-fitted
+// particles, the default, take 80 % of the stable limit their finest
+// particle sets, which at the fillets' rho_F / 5 is longer than the paper's.
+TEST(Jobs, PapersLatticeKeepsItsStepAndBodyFittedParticlesTakeTheAutomaticOne) {
+  json job = {{"scene", {{"type", "rack_pinion"}}}};
+  const PreparedJob fitted = prepare_job(job, 1);
+  EXPECT_EQ(fitted.time_step.chosen_by, "auto");
+  EXPECT_NEAR(fitted.time_step.dt, 0.8 * fitted.time_step.dt_limit, 1e-20);
+  EXPECT_GT(fitted.time_step.dt, 4e-8);
+  job["discretization"] = {{"particles", "lattice"}};
+  const PreparedJob lattice = prepare_job(job, 1);
+  EXPECT_EQ(lattice.time_step.chosen_by, "scene default");
+  EXPECT_EQ(lattice.time_step.dt, 4e-8);
+  EXPECT_EQ(lattice.steps, 1000000);
+}
+
 TEST(Jobs, FixedTimeStepAboveTheLimitIsRefusedWithTheLimit) {
   json job = kPlate;
   job["time"]["dt_s"] = 1e-3;

@@ -467,12 +467,16 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
           njx = normal_x[j];
           njy = normal_y[j];
         }
+        // A tangent-line pair measures from the parabola of a particle
+        // whose surface is one (smoothed, away from corners).
+        const double sag_i = outline && smooth && st.smooth_surface[i] ? p.surf_curvature[i] : 0.0;
+        const double sag_j = outline && smooth && st.smooth_surface[j] ? p.surf_curvature[j] : 0.0;
         // The pair's geometry with i's normal (ax, ay), seen from i.
         auto geometry = [&](double ax, double ay) {
           return curved ? curved_surface_pair(dxij, dyij, ax, ay, njx, njy, p.surf_curvature[i],
                                               p.surf_curvature[j], spacing[i], spacing[j])
                         : surface_pair(dxij, dyij, ax, ay, njx, njy, p.surf_depth[i],
-                                       p.surf_depth[j], dx);
+                                       p.surf_depth[j], dx, outline, sag_i, sag_j);
         };
         // Evaluated in one order for both ends, so that F_ji = -F_ij to the bit.
         SurfacePair sp;
@@ -480,7 +484,7 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
           sp = curved ? curved_surface_pair(-dxij, -dyij, njx, njy, nix, niy, p.surf_curvature[j],
                                             p.surf_curvature[i], spacing[j], spacing[i])
                       : surface_pair(-dxij, -dyij, njx, njy, nix, niy, p.surf_depth[j],
-                                     p.surf_depth[i], dx);
+                                     p.surf_depth[i], dx, outline, sag_j, sag_i);
           sp.nx = -sp.nx;
           sp.ny = -sp.ny;
           sp.tx = -sp.tx;

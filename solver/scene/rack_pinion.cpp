@@ -34,6 +34,17 @@ constexpr double kRackFlankOverFine = 2.0;
 // against FE with the arrangement; capped at 3 : 1, -5.4 to -2.8 %
 // (docs/gears.md, "Pinions the defaults were not made on").
 constexpr double kBulkOverFineMax = 3.0;
+// The default fillet spacing, in root fillet radii rho_F. Read from the
+// fillet's stretch, rho_F / 5 is within -1.5 to +3.4 % of FE on seven
+// pinions, and rho_F / 7 (-0.8 to +3.1 %) costs 1.3-1.45 times as much in
+// the paper's full case (docs/speed-accuracy.md, sixteenth round).
+constexpr double kFilletsPerRootRadius = 5.0;
+// The pinion's default bulk spacing, in fillet spacings: the tooth and the
+// rim under it carry the bending that the fillets concentrate. At three
+// (graded on to 1 mm in the paper's pinion) two small pinions' fillets read
+// +4.4 and +5.6 % against FE, at 1.5 +3.0 and +3.4 %. The rack's back
+// carries no stress that is read and keeps the bulk spacing.
+constexpr double kPinionBulkOverFine = 1.5;
 // Half-width of the arc over which a fillet's stretch is differentiated, in
 // fillet spacings.
 constexpr double kFilletStretchWindow = 3.0;
@@ -189,7 +200,8 @@ void set_pinion_references(GearLayout& L, const geometry::PinionGeometry& pinion
 
 struct GearSpacings {
   bool fitted = false;
-  double dx = 0.0;          // bulk spacing (lattice: the only one)
+  double dx = 0.0;          // bulk spacing (lattice: the only one); the rack's
+  double pinion_dx = 0.0;   // the pinion's bulk spacing
   double fine = 0.0;        // at the fillets (lattice: dx)
   double flank = 0.0;       // at the pinion's active flanks
   double rack_flank = 0.0;  // at the rack's active flanks
@@ -199,18 +211,17 @@ struct GearSpacings {
 
 // Spacings follow the gear, not a number: the bulk a quarter of the
 // module (the seed paper's 1 mm at module 4; body-fitted, at most three
-// fillet spacings), and body-fitted particles a seventh of the root fillet
-// radius rho_F at the fillets, where the stress varies over that length.
-// A fit of the particles' stress needed it: at rho_F / 5 it read the peak
-// 12 % low. Read from the fillet's stretch, rho_F / 5 is within 4 % of FE
-// too, at a longer stable step (docs/speed-accuracy.md, fifteenth round:
-// measured, not yet the default). The active flanks, where the teeth touch,
-// take 1.5 times that on the pinion and twice on the rack.
+// fillet spacings), and body-fitted particles a fifth of the root fillet
+// radius rho_F at the fillets, where the stress varies over that length;
+// the pinion's bulk at most 1.5 fillet spacings. The active flanks, where
+// the teeth touch, take 1.5 times the fillets' spacing on the pinion and
+// twice on the rack.
 GearSpacings choose_spacings(Simulation& sim, const Discretization& job, GearLayout& L) {
   const bool fitted =
       particle_layout(job, ParticleLayout::BodyFitted) == ParticleLayout::BodyFitted;
-  const double fine = L.iso_pitch.rho_F / 7.0;
+  const double fine = L.iso_pitch.rho_F / kFilletsPerRootRadius;
   const bool default_fine = sim.discretization.fine_dx <= 0.0;
+  const bool default_bulk = sim.discretization.dx <= 0.0;
   const double bulk = fitted && default_fine ? std::min(0.25 * L.module_m, kBulkOverFineMax * fine)
                                              : 0.25 * L.module_m;
   const SceneSpacings base = graded_scene_spacings(sim.discretization, fitted, bulk, fine);
@@ -218,7 +229,9 @@ GearSpacings choose_spacings(Simulation& sim, const Discretization& job, GearLay
   sp.fitted = base.fitted;
   sp.dx = base.dx;
   sp.fine = base.fine;
-  sp.flank = std::min(sp.dx, kPinionFlankOverFine * sp.fine);
+  sp.pinion_dx =
+      base.fitted && default_bulk ? std::min(sp.dx, kPinionBulkOverFine * sp.fine) : sp.dx;
+  sp.flank = std::min(sp.pinion_dx, kPinionFlankOverFine * sp.fine);
   sp.rack_flank = std::min(sp.dx, kRackFlankOverFine * sp.fine);
   sp.grading = base.grading;
   sp.support = kernel_support(sim.discretization.kernel) * sim.h();
@@ -230,6 +243,7 @@ GearSpacings choose_spacings(Simulation& sim, const Discretization& job, GearLay
   require_fine_within_bulk(base);
   L.fitted = sp.fitted;
   L.spacing = sp.dx;
+  L.pinion_spacing = sp.pinion_dx;
   L.fine_spacing = sp.fine;
   return sp;
 }
@@ -482,7 +496,7 @@ void add_resolved_contact(geometry::SpacingField& field, const GearLayout& L) {
 geometry::SpacingField pinion_spacing(const GearLayout& L, const geometry::PinionGeometry& pinion,
                                       const geometry::MeshPlacement& place,
                                       const GearSpacings& sp) {
-  geometry::SpacingField field(sp.dx, sp.grading);
+  geometry::SpacingField field(sp.pinion_dx, sp.grading);
   for (int k : L.pinion_teeth) {
     const gear::ToothFillets f =
         gear::tooth_fillets(pinion, k, place.pinion, load_on_tooth(L, k), 0.25 * sp.fine);
@@ -721,6 +735,7 @@ nlohmann::json describe_pinion(const Simulation& sim, const nlohmann::json& pj, 
           {"undercut", pinion.undercut()},
           {"pitch_thickness_m", pinion.pitch_thickness()},
           {"deformable_from_radius_m", r_drive},
+          {"bulk_spacing_m", L.pinion_spacing},
           {"driven_hub_particles", hub},
           {"drive", L.torque_Nm
                         ? nlohmann::json{{"torque_N_m", *L.torque_Nm},
@@ -732,10 +747,12 @@ nlohmann::json describe_pinion(const Simulation& sim, const nlohmann::json& pj, 
 }
 
 // The rack segment as modelled.
-nlohmann::json describe_rack(const Simulation& sim, const geometry::RackGeometry& rack) {
+nlohmann::json describe_rack(const Simulation& sim, const GearLayout& L,
+                             const geometry::RackGeometry& rack) {
   std::size_t guided = 0;
   for (std::size_t i = 0; i < sim.particles.n; ++i) guided += sim.particles.motion[i] == 2;
   return {{"modelled_teeth", rack.spec().teeth},
+          {"bulk_spacing_m", L.spacing},
           {"pitch_m", rack.pitch()},
           {"back_thickness_m", rack.spec().back_thickness_m},
           {"guided_back_particles", guided}};
@@ -813,13 +830,16 @@ Scene build_rack_pinion(const SceneInput& in) {
   scene.outlines.push_back(polygon_outline("pinion", 0, outlines.pinion));
   scene.outlines.push_back(polygon_outline("rack", 1, outlines.rack));
   if (!L.quasi_static) scene.default_end_s = 0.04;  // static checks: relax_to_static's
-  scene.default_dt_s = 4e-8;
+  // The seed paper's step for its lattice, so that its case runs as
+  // published; body-fitted particles take the automatic step, 80 % of the
+  // stable limit their finest particle sets (4.8e-8 s at the default).
+  if (!L.fitted) scene.default_dt_s = 4e-8;
 
   L.selection = explain_selection(pj, L, teeth);
   scene.description = describe_mesh(sim, s, L, phase, omega_mesh);
   scene.description["pinion"] =
       describe_pinion(sim, pj, L, pinion, outlines.r_drive, pinion_inertia);
-  scene.description["rack"] = describe_rack(sim, rack);
+  scene.description["rack"] = describe_rack(sim, L, rack);
   if (L.resolved.spacing > 0.0) {
     // The particles carry the contact: its force on single pairs, as in the
     // hertz scene, not spread over the surface.

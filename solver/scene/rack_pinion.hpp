@@ -57,9 +57,11 @@ struct GearLayout {
     double x = 0.0, y = 0.0, tx = 0.0, ty = 0.0, spacing = 0.0, half_width = 0.0;
   } resolved;
   // Particles: body-fitted (graded from fine_spacing at the fillets and
-  // active flanks to spacing) or a lattice of spacing.
+  // active flanks to pinion_spacing in the pinion, spacing in the rack) or
+  // a lattice of spacing.
   bool fitted = false;
   double spacing = 0.0, fine_spacing = 0.0;
+  double pinion_spacing = 0.0;  // the pinion's bulk (body-fitted: finer than the rack's)
   // The fillets and critical section of every modelled tooth, with the
   // stress recovered on them (rack_pinion_roots.hpp).
   std::shared_ptr<const RootMonitor> roots;

@@ -331,6 +331,7 @@ nlohmann::json static_root_check(const GearLayout& L, const History& h,
           {"tooth0_box_m", gear::tooth_window(L.roots->fillets(i0), L.tip_radius)},
           {"particles", L.fitted ? "body_fitted" : "lattice"},
           {"spacing_m", L.spacing},
+          {"pinion_spacing_m", L.pinion_spacing},
           {"fine_spacing_m", L.fine_spacing}};
 }
 
