@@ -1,6 +1,7 @@
 // gearsph geometry JOB.json --out DIR: the scene a job would simulate, as
 // pictures and tables a person can check before running it: outlines and
 // particles (SVG, coloured by body and by kinematic role) and CSV files.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -22,9 +23,23 @@ geometry::SvgDrawing drawing_of(const PreparedJob& job) {
   const Simulation& sim = job.scene.sim;
   const Particles& p = sim.particles;
   geometry::SvgDrawing d;
+  // Graded particles: the range of their spacings, not the bulk's alone.
+  double finest = sim.discretization.dx, coarsest = sim.discretization.dx;
+  if (!p.spacing.empty()) {
+    const auto [lo, hi] = std::minmax_element(p.spacing.begin(), p.spacing.end());
+    finest = *lo;
+    coarsest = *hi;
+  }
+  auto mm = [](double m) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3f", m * 1e3);
+    return std::string(text);
+  };
   d.title = job.job.at("name").get<std::string>() + " (" + job.scene.type +
-            "): " + std::to_string(p.n) +
-            " particles, dx = " + std::to_string(sim.discretization.dx * 1e3).substr(0, 5) + " mm";
+            "): " + std::to_string(p.n) + " particles, " +
+            (coarsest > 1.001 * finest ? "spacing " + mm(finest) + " to " + mm(coarsest)
+                                       : "dx = " + mm(coarsest)) +
+            " mm";
   // Scale so that the drawing is about 1200 px wide.
   double x0 = 1e300, x1 = -1e300;
   for (std::size_t i = 0; i < p.n; ++i) {
