@@ -18,16 +18,20 @@
 namespace gearsph {
 namespace {
 
+// The static check at the default particles, 1 kN on tooth 0 at a point.
+nlohmann::json static_check_at(const nlohmann::json& point) {
+  return {{"scene",
+           {{"type", "rack_pinion"},
+            {"quasi_static", true},
+            {"contact_point", point},
+            {"pinion", {{"omega_rad_s", 0.0}}},
+            {"rack", {{"load_N", 1000.0}, {"velocity_m_s", 0.0}}}}}};
+}
+
 TEST(ContactPoint, LoadSitsWhereAskedAndMeshStiffnessHoldsBetweenParticles) {
   std::vector<double> stiffness;
   for (const double radius_mm : {26.0, 26.1, 26.2}) {
-    const nlohmann::json job = {{"scene",
-                                 {{"type", "rack_pinion"},
-                                  {"quasi_static", true},
-                                  {"contact_point", radius_mm},
-                                  {"pinion", {{"omega_rad_s", 0.0}}},
-                                  {"rack", {{"load_N", 1000.0}, {"velocity_m_s", 0.0}}}}}};
-    PreparedJob prepared = prepare_job(job, 1);
+    PreparedJob prepared = prepare_job(static_check_at(radius_mm), 1);
     const RunResult result = run_job(prepared);
     ASSERT_EQ(result.status, "completed") << result.message;
     const nlohmann::json& sc = result.summary.at("analysis").at("static_check");
@@ -60,13 +64,7 @@ TEST(ContactPoint, LoadSitsWhereAskedAndMeshStiffnessHoldsBetweenParticles) {
 // lattice).
 TEST(ContactPoint, StressFieldIsCleanAtTheDefaults) {
   for (const char* point : {"pitch", "lpstc"}) {
-    const nlohmann::json job = {{"scene",
-                                 {{"type", "rack_pinion"},
-                                  {"quasi_static", true},
-                                  {"contact_point", point},
-                                  {"pinion", {{"omega_rad_s", 0.0}}},
-                                  {"rack", {{"load_N", 1000.0}, {"velocity_m_s", 0.0}}}}}};
-    PreparedJob prepared = prepare_job(job, 1);
+    PreparedJob prepared = prepare_job(static_check_at(point), 1);
     const RunResult result = run_job(prepared);
     ASSERT_EQ(result.status, "completed") << result.message;
     EXPECT_LT(result.summary.at("health").at("measures").at("zigzag_final").get<double>(), 0.3)
