@@ -2,6 +2,8 @@
 // gearsph run writes summary.json and history.csv with stable keys.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -115,6 +117,38 @@ TEST(Cli, RunWritesSummaryAndHistory) {
   EXPECT_EQ(header.rfind("time_s,", 0), 0u) << header;
   EXPECT_NE(header.find("tip_y_m"), std::string::npos) << header;
   EXPECT_NE(header.find("tip_vy_m_s"), std::string::npos) << header;
+  fs::remove_all(dir);
+}
+
+// `gearsph geometry` draws graded particles as they are: the title gives
+// the range of spacings, and each dot is sized by its own particle's
+// spacing (the fillets' dots smaller than the rack's back).
+TEST(Cli, GeometryDrawsGradedParticlesAtTheirOwnSpacing) {
+  const fs::path dir = fs::temp_directory_path() / "gearsph_cli_geometry";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "job.json") << json{{"scene", {{"type", "rack_pinion"}}}}.dump();
+  ASSERT_EQ(run_cli("geometry " + (dir / "job.json").string() + " --out " + (dir / "g").string()),
+            0);
+  const std::string svg = slurp(dir / "g/geometry.svg");
+  EXPECT_NE(svg.find("particles, spacing 0.477 to 1.000 mm"), std::string::npos)
+      << svg.substr(0, 400);
+  // Dot radii in px: the largest over the smallest is about the spacings'
+  // ratio, 1.000 / 0.477.
+  double smallest = 1e300, largest = 0.0;
+  for (std::size_t at = svg.find(" r=\""); at != std::string::npos;
+       at = svg.find(" r=\"", at + 1)) {
+    const double r = std::stod(svg.substr(at + 4));
+    smallest = std::min(smallest, r);
+    largest = std::max(largest, r);
+  }
+  ASSERT_GT(smallest, 0.0);
+  EXPECT_NEAR(largest / smallest, 1.0 / 0.477, 0.1);
+  const std::string csv = slurp(dir / "g/particles.csv");
+  // A header, then as many particles as the title counts.
+  const std::size_t title = svg.find("(rack_pinion): ");
+  ASSERT_NE(title, std::string::npos);
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + std::stol(svg.substr(title + 15)));
   fs::remove_all(dir);
 }
 

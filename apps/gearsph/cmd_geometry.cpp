@@ -2,9 +2,11 @@
 // pictures and tables a person can check before running it: outlines and
 // particles (SVG, coloured by body and by kinematic role) and CSV files.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "apps/gearsph/cli.hpp"
@@ -24,11 +26,13 @@ geometry::SvgDrawing drawing_of(const PreparedJob& job) {
   const Particles& p = sim.particles;
   geometry::SvgDrawing d;
   // Graded particles: the range of their spacings, not the bulk's alone.
-  double finest = sim.discretization.dx, coarsest = sim.discretization.dx;
-  if (!p.spacing.empty()) {
-    const auto [lo, hi] = std::minmax_element(p.spacing.begin(), p.spacing.end());
-    finest = *lo;
-    coarsest = *hi;
+  auto spacing_of = [&](std::size_t i) {
+    return i < p.spacing.size() && p.spacing[i] > 0.0 ? p.spacing[i] : sim.discretization.dx;
+  };
+  double finest = p.n ? spacing_of(0) : sim.discretization.dx, coarsest = finest;
+  for (std::size_t i = 1; i < p.n; ++i) {
+    finest = std::min(finest, spacing_of(i));
+    coarsest = std::max(coarsest, spacing_of(i));
   }
   auto mm = [](double m) {
     char text[32];
@@ -47,16 +51,21 @@ geometry::SvgDrawing drawing_of(const PreparedJob& job) {
     x1 = std::max(x1, p.x[i]);
   }
   d.px_per_mm = std::clamp(1200.0 / std::max(1e-3, (x1 - x0) * 1e3), 0.5, 200.0);
+  // Each dot 0.4 of its particle's own spacing, so that graded particles
+  // look as dense as they are: one set of dots per body, role and spacing
+  // (to 2 %).
   for (std::size_t b = 0; b < sim.bodies.size(); ++b) {
-    geometry::SvgDots free_dots, driven_dots;
-    free_dots.colour = kBodyColours[b % 4];
-    driven_dots.colour = kDrivenColour;
-    free_dots.radius_m = driven_dots.radius_m = 0.4 * sim.discretization.dx;
+    std::map<std::pair<bool, long>, geometry::SvgDots> sets;
     for (std::size_t i = sim.bodies[b].begin; i < sim.bodies[b].end; ++i) {
-      (p.motion[i] == 0 ? free_dots : driven_dots).points.push_back({p.x[i], p.y[i]});
+      const long bin = std::lround(std::log(spacing_of(i) / finest) / std::log(1.02));
+      geometry::SvgDots& dots = sets[{p.motion[i] != 0, bin}];
+      if (dots.points.empty()) {
+        dots.colour = p.motion[i] == 0 ? kBodyColours[b % 4] : kDrivenColour;
+        dots.radius_m = 0.4 * finest * std::pow(1.02, static_cast<double>(bin));
+      }
+      dots.points.push_back({p.x[i], p.y[i]});
     }
-    d.dots.push_back(free_dots);
-    d.dots.push_back(driven_dots);
+    for (auto& [key, dots] : sets) d.dots.push_back(std::move(dots));
   }
   for (const Outline& o : job.scene.outlines) {
     geometry::SvgPolyline line;
