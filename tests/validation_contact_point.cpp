@@ -69,6 +69,12 @@ TEST(ContactPoint, StressFieldIsCleanAtTheDefaults) {
     ASSERT_EQ(result.status, "completed") << result.message;
     EXPECT_LT(result.summary.at("health").at("measures").at("zigzag_final").get<double>(), 0.3)
         << point;
+    // The summary names the finest particles beside the bulk's spacing.
+    const nlohmann::json& d = result.summary.at("discretization");
+    EXPECT_NEAR(d.at("finest_spacing_m").get<double>(),
+                result.summary.at("analysis").at("static_check").at("fine_spacing_m").get<double>(),
+                0.01 * d.at("finest_spacing_m").get<double>());
+    EXPECT_LT(d.at("finest_spacing_m").get<double>(), d.at("spacing_m").get<double>());
   }
 }
 

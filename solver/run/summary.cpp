@@ -89,7 +89,14 @@ nlohmann::json make_summary(const PreparedJob& job, const RunResult& result,
                                       : 0.0}};
   s["model"] = scene.description;
   s["method"] = job.job.at("method");
+  // Graded particles: the finest spacing beside the bulk's, which h_m is
+  // taken at (each particle's h is h_over_dx times its own spacing).
+  double finest = sim.discretization.dx;
+  for (std::size_t i = 0; i < sim.particles.n; ++i) {
+    if (sim.particles.spacing[i] > 0.0) finest = std::min(finest, sim.particles.spacing[i]);
+  }
   s["discretization"] = {{"spacing_m", sim.discretization.dx},
+                         {"finest_spacing_m", finest},
                          {"h_over_dx", sim.discretization.h_over_dx},
                          {"h_m", sim.h()},
                          {"kernel", kernel_name(sim.discretization.kernel)}};
