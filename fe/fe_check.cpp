@@ -63,6 +63,10 @@ nlohmann::json mesh_json(const GearFeResult& r, double face_width_m) {
           // mesh_compliance (docs/gears.md).
           {"pinion_compliance_at_load_um_mm_per_N",
            1e9 * r.load_displacement_m / (geometry::norm(r.load.applied_N) / face_width_m)},
+          // The same at the patch centre: the pinion's part of the bodies'
+          // approach, which the pair's stiffness takes.
+          {"pinion_compliance_at_centre_um_mm_per_N",
+           1e9 * r.centre_displacement_m / (geometry::norm(r.load.applied_N) / face_width_m)},
           {"applied_force_N", xy(r.load.applied_N)},
           {"reaction_total_N", xy(r.reaction_N)},
           // |reaction + load| / |load|: the solve's equilibrium, ~1e-6 (the
@@ -206,8 +210,10 @@ nlohmann::json load_json(const CheckCase& k, const GearLoadPatch& load, double f
 void add_convergence(const nlohmann::json& meshes, nlohmann::json& s) {
   const nlohmann::json& top = meshes.back();
   std::vector<std::string> keys = fillet_keys();
-  for (const char* k : {"pinion_compliance_at_load_um_mm_per_N", "rack_compliance_um_mm_per_N",
-                        "pair_mesh_stiffness_N_per_mm_um"}) {
+  for (const char* k :
+       {"pinion_compliance_at_load_um_mm_per_N", "rack_compliance_um_mm_per_N",
+        "pinion_compliance_at_centre_um_mm_per_N", "rack_compliance_at_centre_um_mm_per_N",
+        "pair_mesh_stiffness_N_per_mm_um"}) {
     keys.push_back(k);
   }
   nlohmann::json convergence;
@@ -305,11 +311,17 @@ nlohmann::json run_fe_check(const nlohmann::json& job, const std::filesystem::pa
   nlohmann::json meshes = nlohmann::json::array();
   for (std::size_t i = 0; i < results.size(); ++i) {
     nlohmann::json m = mesh_json(results[i], c.face_width_m);
-    // um mm/N; the pair's stiffness 1 / (pinion + rack) in N/(mm um).
+    // um mm/N. The pair's stiffness in N/(mm um) is 1 / (pinion + rack) at
+    // the patch centres: the bodies' approach, which a transmission error
+    // measures (the work-conjugate means are less by a^2 / (8 R*) in all).
     const double rack = 1e9 * racks[i].compliance_m2_per_N;
+    const double rack_centre = 1e9 * racks[i].centre_compliance_m2_per_N;
     m["rack_compliance_um_mm_per_N"] = rack;
+    m["rack_compliance_at_centre_um_mm_per_N"] = rack_centre;
     m["rack_nodes"] = racks[i].mesh.nodes.size();
     m["pair_mesh_stiffness_N_per_mm_um"] =
+        1.0 / (m.at("pinion_compliance_at_centre_um_mm_per_N").get<double>() + rack_centre);
+    m["pair_mesh_stiffness_work_conjugate_N_per_mm_um"] =
         1.0 / (m.at("pinion_compliance_at_load_um_mm_per_N").get<double>() + rack);
     meshes.push_back(m);
   }
@@ -319,9 +331,11 @@ nlohmann::json run_fe_check(const nlohmann::json& job, const std::filesystem::pa
   s["reference_mesh"] = results.size() - 1;
   s["reference_fillet_size_m"] = ref.sizes.fillet;
   for (const std::string& key : fillet_keys()) s[key] = top.at(key);
-  for (const char* key : {"fillet_tension_peak_angle_deg", "nodes", "elements", "reaction_total_N",
-                          "applied_force_N", "pinion_compliance_at_load_um_mm_per_N",
-                          "rack_compliance_um_mm_per_N", "pair_mesh_stiffness_N_per_mm_um"}) {
+  for (const char* key :
+       {"fillet_tension_peak_angle_deg", "nodes", "elements", "reaction_total_N", "applied_force_N",
+        "pinion_compliance_at_load_um_mm_per_N", "rack_compliance_um_mm_per_N",
+        "pinion_compliance_at_centre_um_mm_per_N", "rack_compliance_at_centre_um_mm_per_N",
+        "pair_mesh_stiffness_N_per_mm_um", "pair_mesh_stiffness_work_conjugate_N_per_mm_um"}) {
     s[key] = top.at(key);
   }
   s["load_radius_m"] = ref.load.radius_m;
@@ -412,6 +426,12 @@ nlohmann::json fe_comparison(const nlohmann::json& sph_summary, const nlohmann::
     if (fe.contains("rack_compliance_um_mm_per_N")) {
       entry["fe_rack_at_load"] = fe.at("rack_compliance_um_mm_per_N");
     }
+    // At the patch centres: the approach the pair's stiffness takes.
+    for (const auto& [key, name] :
+         {std::pair{"pinion_compliance_at_centre_um_mm_per_N", "fe_pinion_at_centre"},
+          std::pair{"rack_compliance_at_centre_um_mm_per_N", "fe_rack_at_centre"}}) {
+      if (fe.contains(key)) entry[name] = fe.at(key);
+    }
     if (check && check->contains("mesh_compliance") && (*check)["mesh_compliance"].is_object()) {
       const nlohmann::json& mc = (*check)["mesh_compliance"];
       entry["sph_pinion"] = mc.value("pinion_um_mm_per_N", 0.0);
@@ -420,8 +440,9 @@ nlohmann::json fe_comparison(const nlohmann::json& sph_summary, const nlohmann::
     }
     block["mesh_compliance_um_mm_per_N"] = entry;
   }
-  // The pair's mesh stiffness: FE's pinion and rack in series, each with its
-  // side of the Hertz indentation, against the static check's.
+  // The pair's mesh stiffness: FE's pinion and rack in series at their
+  // contact centres, each with its side of the Hertz indentation, against
+  // the static check's.
   if (fe.contains("pair_mesh_stiffness_N_per_mm_um")) {
     const double fe_k = fe.at("pair_mesh_stiffness_N_per_mm_um").get<double>();
     nlohmann::json entry = {{"fe", fe_k}, {"sph", nullptr}, {"error", nullptr}};

@@ -326,6 +326,16 @@ std::vector<Point> hertz_forces(const TriMesh& mesh, const std::vector<BoundaryE
   return forces;
 }
 
+double boundary_displacement(const TriMesh& mesh, const std::vector<BoundaryEdge>& edges,
+                             const FeSolution& solution, Point point, Point direction) {
+  const EdgeHit hit = nearest_edge(mesh, edges, point);
+  std::vector<double> along(solution.displacement.size());
+  for (std::size_t k = 0; k < along.size(); ++k) {
+    along[k] = solution.displacement[k].x * direction.x + solution.displacement[k].y * direction.y;
+  }
+  return along_edge(edges[hit.edge], hit.xi, along);
+}
+
 double load_displacement(const std::vector<Point>& forces, const FeSolution& solution) {
   double work = 0.0;
   Point total;
@@ -379,6 +389,9 @@ GearFeResult solve_gear_fe(const GearFeCase& c, const GearMeshSizes& sizes, doub
   out.reaction_N = c.face_width_m * out.solution.reaction;
   out.mesh = std::move(model.mesh);
   out.load_displacement_m = load_displacement(model.nodal_forces, out.solution);
+  out.centre_displacement_m =
+      boundary_displacement(out.mesh, group_edges(out.mesh, boundary, "loaded_flank"), out.solution,
+                            out.load.centre, out.load.direction);
   stress_on_fillets(boundary, out);
   return out;
 }

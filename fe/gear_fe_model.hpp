@@ -102,6 +102,11 @@ struct GearFeResult {
   // from the held radius. Per unit line load it is the pinion's share of the
   // mesh compliance that the SPH static check splits (docs/gears.md).
   double load_displacement_m = 0.0;
+  // The flank's displacement at the patch centre along the load [m]. The
+  // approach of two bodies in Hertz contact is that of their contact
+  // centres; the work-conjugate mean above is less by each body's share of
+  // a^2 / (8 R*) (docs/gears.md, "The pair against finite elements").
+  double centre_displacement_m = 0.0;
   double curve_to_mesh_m = 0.0;  // largest distance of a fillet sample from the mesh boundary
   double mesh_s = 0.0, solve_s = 0.0;
 };
@@ -120,6 +125,10 @@ std::array<double, 2> root_image_range_Pa(const GearFeResult& r);
 // about 1e-4).
 std::vector<Point> hertz_forces(const TriMesh& mesh, const std::vector<BoundaryEdge>& edges,
                                 Point centre, const GearLoadPatch& patch, double line_load);
+// The displacement along `direction` at the boundary point of `edges`
+// nearest `point`, interpolated along its edge [m].
+double boundary_displacement(const TriMesh& mesh, const std::vector<BoundaryEdge>& edges,
+                             const FeSolution& solution, Point point, Point direction);
 // The displacement work-conjugate to `forces`: sum f . u / |sum f| [m].
 double load_displacement(const std::vector<Point>& forces, const FeSolution& solution);
 

@@ -146,6 +146,9 @@ RackFeResult solve_rack_fe(const GearFeCase& c, const GearLoadPatch& load, doubl
   }
   out.mean_displacement_m = mean / area;
   out.compliance_m2_per_N = (out.load_displacement_m - out.mean_displacement_m) / line_load;
+  out.centre_displacement_m = boundary_displacement(model.mesh, flank, out.solution, centre, dir);
+  out.centre_compliance_m2_per_N =
+      (out.centre_displacement_m - out.mean_displacement_m) / line_load;
   out.mesh = std::move(model.mesh);
   return out;
 }

@@ -28,6 +28,11 @@ struct RackFeResult {
   double mean_displacement_m = 0.0;  // the rack's area mean, along the load
   // (load - mean) per unit line load F_n / b [m^2/N].
   double compliance_m2_per_N = 0.0;
+  // The flank at the patch centre, along the load [m], and (centre - mean)
+  // per unit line load [m^2/N]: the rack's part of the approach
+  // (GearFeResult::centre_displacement_m).
+  double centre_displacement_m = 0.0;
+  double centre_compliance_m2_per_N = 0.0;
   double mesh_s = 0.0, solve_s = 0.0;
 };
 

@@ -465,6 +465,25 @@ TEST(FeGear, FilletStressAgainstIsoAtPitchHpstcAndTip) {
     EXPECT_LT(std::abs(rack_diff), 0.03) << point;
     EXPECT_LT(pair, pair_above) << point;
     pair_above = pair;
+    // The pair's stiffness takes each body at the patch centre: the bodies'
+    // approach. The pressure-weighted means lie below the centres by the
+    // surfaces' gap x^2 / (2 R*) averaged over the Hertz pressure, a^2 /
+    // (8 R*) = F' / (2 pi E*) (Johnson 1985, eqs. 4.43-4.45): a compliance
+    // of 1 / (2 pi E*) whatever the load and the curvature.
+    {
+      const GearFeJob read = read_gear_fe_job(gear_job(point));
+      const double e_star =
+          1.0 / ((1.0 - read.model.nu * read.model.nu) / read.model.E_Pa +
+                 (1.0 - read.model.rack_nu * read.model.rack_nu) / read.model.rack_E_Pa);
+      const double hertz_gap = 1e9 / (2.0 * 3.141592653589793 * e_star);  // um mm/N
+      const double gap = s.at("pinion_compliance_at_centre_um_mm_per_N").get<double>() -
+                         s.at("pinion_compliance_at_load_um_mm_per_N").get<double>() +
+                         s.at("rack_compliance_at_centre_um_mm_per_N").get<double>() -
+                         s.at("rack_compliance_um_mm_per_N").get<double>();
+      std::printf("%-5s centres less means %.5f um mm/N against Hertz's 1 / (2 pi E*) %.5f\n",
+                  point, gap, hertz_gap);
+      EXPECT_NEAR(gap / hertz_gap, 1.0, 0.1) << point;
+    }
     if (std::string(point) == "pitch") {
       const GearFeJob read = read_gear_fe_job(gear_job(point));
       const geometry::PinionGeometry pinion(read.model.pinion);
@@ -613,11 +632,13 @@ TEST(FeGear, ComparisonGivesSphFeAndErrorOrSaysWhatIsMissing) {
   EXPECT_FALSE(block.contains("mesh_stiffness_N_per_mm_um"));
   fe["pair_mesh_stiffness_N_per_mm_um"] = 13.9;
   fe["rack_compliance_um_mm_per_N"] = 0.030;
+  fe["rack_compliance_at_centre_um_mm_per_N"] = 0.0308;
   sc["mesh_stiffness_N_per_mm_um"] = 12.1;
   sc["mesh_compliance"]["rack_um_mm_per_N"] = 0.0187;
   block = fe_comparison(sph, fe);
   EXPECT_EQ(block.at("mesh_compliance_um_mm_per_N").at("fe_rack_at_load"), 0.030);
   EXPECT_EQ(block.at("mesh_compliance_um_mm_per_N").at("sph_rack"), 0.0187);
+  EXPECT_EQ(block.at("mesh_compliance_um_mm_per_N").at("fe_rack_at_centre"), 0.0308);
   EXPECT_NEAR(block.at("mesh_stiffness_N_per_mm_um").at("error").get<double>(), 12.1 / 13.9 - 1.0,
               1e-12);
 }

@@ -52,8 +52,8 @@ TEST(ContactPoint, LoadSitsWhereAskedAndMeshStiffnessHoldsBetweenParticles) {
     stiffness.push_back(sc.at("mesh_stiffness_N_per_mm_um").get<double>());
   }
   const auto [lo, hi] = std::minmax_element(stiffness.begin(), stiffness.end());
-  // The finite-element pair falls by 1.3 % over these 0.2 mm (12.46 at
-  // 26.21 mm, 13.91 at the pitch point; docs/fe-check.md).
+  // The finite-element pair falls by 1.3 % over these 0.2 mm (12.20 at
+  // 26.21 mm, 13.59 at the pitch point; docs/fe-check.md).
   EXPECT_LT(*hi / *lo - 1.0, 0.05) << "mesh stiffness " << *lo << " .. " << *hi;
 }
 

@@ -66,11 +66,15 @@ void print_report(const nlohmann::json& s) {
       "pinion compliance at the load (tooth, rim and the pinion's Hertz indentation, from the "
       "held radius): %.4f um mm/N\n",
       s.at("pinion_compliance_at_load_um_mm_per_N").get<double>());
+  std::printf("rack compliance at the load (tooth and back, from the rack's mean): %.4f um mm/N\n",
+              s.at("rack_compliance_um_mm_per_N").get<double>());
   std::printf(
-      "rack compliance at the load (tooth and back, from the rack's mean): %.4f um mm/N; the "
-      "pair in series: %.2f N/(mm um)\n",
-      s.at("rack_compliance_um_mm_per_N").get<double>(),
-      s.at("pair_mesh_stiffness_N_per_mm_um").get<double>());
+      "at the contact centres: pinion %.4f, rack %.4f um mm/N; the pair's stiffness %.2f N/(mm "
+      "um) (%.2f from the work-conjugate means)\n",
+      s.at("pinion_compliance_at_centre_um_mm_per_N").get<double>(),
+      s.at("rack_compliance_at_centre_um_mm_per_N").get<double>(),
+      s.at("pair_mesh_stiffness_N_per_mm_um").get<double>(),
+      s.at("pair_mesh_stiffness_work_conjugate_N_per_mm_um").get<double>());
   const nlohmann::json& iso = s.at("iso_6336_3");
   std::printf(
       "ISO 6336-3 sigma_F0 = %.2f MPa (Y_F %.3f, Y_S %.3f): FE peak / sigma_F0 = %.3f, "

@@ -306,7 +306,7 @@ std::vector<Case> cases(bool quick) {
                  "(r = 24 mm), where ISO's Y_F is 0.6 of its tip value"});
   // The elastic pair the particles model is ISO's theoretical stiffness
   // c'_th: a finite-element model of the same pinion and rack tooth gives
-  // 13.9 N/(mm um) at the pitch point, c'_th within 2 % (docs/fe-check.md).
+  // 13.6 N/(mm um) at the pitch point, c'_th within 1 % (docs/fe-check.md).
   // ISO's c' is 0.8 c'_th (C_M), the measured gears' extra compliance that
   // the model has no source for; it is reported beside it.
   out.push_back({"gear_static/mesh_stiffness", "7", "single-pair mesh stiffness [N/(mm um)]",
