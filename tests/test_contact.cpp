@@ -313,6 +313,191 @@ TEST(Contact, CurvedOutlinesTouchOnceAtTheirOverlapWhereverTheContactFalls) {
   EXPECT_FALSE(physics::curved_pair(1.0 / 8e-3, 1.0 / 0.5e-3, h_i, h_j));  // a rounded corner
 }
 
+// An involute against a flat, pressed in by delta at X (contact_surface.hpp,
+// the cubic terms): rows of particles on the involute of a 22.55 mm base
+// circle around its 8.2 mm radius of curvature (the paper's pitch point) and
+// on the flat, shifted along each other by any fraction of a spacing. With
+// each particle's curvature and its rate of change the pairs read the
+// overlap at X to 1.2 % as their weights average it (each pair of weight
+// over a quarter to 1 %); with the curvature alone (a parabola) to 8.4 %
+// (34 %), the curvature changing by 8 % over a spacing.
+// The overlap's gradient is the pair's force direction, as for circles.
+TEST(Contact, CurvedPairsFollowAnInvolutesChangingCurvature) {
+  const double rb = 22.55e-3, h_i = 0.6e-3, h_j = 0.9e-3, delta = 3e-6;
+  // Involute of roll angle phi: P = rb (cos + phi sin, sin - phi cos), its
+  // tangent (cos phi, sin phi), outward normal (sin phi, -cos phi) (the body
+  // on its centre of curvature's side), radius of curvature rb phi, arc
+  // length rb phi^2 / 2.
+  const double phi_x = 8.2e-3 / rb, s_x = 0.5 * rb * phi_x * phi_x;
+  const double px = rb * (std::cos(phi_x) + phi_x * std::sin(phi_x));
+  const double py = rb * (std::sin(phi_x) - phi_x * std::cos(phi_x));
+  const double nx = std::sin(phi_x), ny = -std::cos(phi_x);  // i's normal at X
+  double worst_cubic = 0.0, worst_parabola = 0.0, worst_weighted_parabola = 0.0;
+  int pairs = 0;
+  for (const double shift : {0.0, 0.2, 0.45, 0.7, 0.9}) {
+    double total = 0.0, cubic_error = 0.0, parabola_error = 0.0, parabola_total = 0.0;
+    for (int a = -3; a <= 3; ++a) {
+      const double s = s_x + (a + shift) * h_i;
+      const double phi = std::sqrt(2.0 * s / rb);
+      const double xi = rb * (std::cos(phi) + phi * std::sin(phi));
+      const double yi = rb * (std::sin(phi) - phi * std::cos(phi));
+      const double ni_x = std::sin(phi), ni_y = -std::cos(phi);
+      // The particle's own tangent (-n_y, n_x) = (cos phi, sin phi) runs with
+      // the arc length: d(kappa)/ds = -1 / (rb^2 phi^3).
+      const double kappa_i = 1.0 / (rb * phi), rate_i = -1.0 / (rb * rb * phi * phi * phi);
+      for (int b = -3; b <= 3; ++b) {
+        // The flat's surface, delta into i, its outward normal -n.
+        const double t = (b - 0.3 * shift) * h_j;
+        const double xj = px - delta * nx - t * ny, yj = py - delta * ny + t * nx;
+        const physics::SurfacePair cubic = physics::curved_surface_pair(
+            xi - xj, yi - yj, ni_x, ni_y, -nx, -ny, kappa_i, 0.0, h_i, h_j, rate_i, 0.0);
+        const physics::SurfacePair parabola = physics::curved_surface_pair(
+            xi - xj, yi - yj, ni_x, ni_y, -nx, -ny, kappa_i, 0.0, h_i, h_j);
+        const physics::SurfacePair back = physics::curved_surface_pair(
+            xj - xi, yj - yi, -nx, -ny, ni_x, ni_y, 0.0, kappa_i, h_j, h_i, 0.0, rate_i);
+        if (!cubic.active) continue;
+        ++pairs;
+        total += cubic.weight;
+        cubic_error += cubic.weight * (cubic.overlap - delta);
+        if (cubic.weight > 0.25) {
+          worst_cubic = std::max(worst_cubic, std::abs(cubic.overlap - delta));
+        }
+        if (parabola.active) {
+          parabola_error += parabola.weight * (parabola.overlap - delta);
+          parabola_total += parabola.weight;
+          if (parabola.weight > 0.25) {
+            worst_parabola = std::max(worst_parabola, std::abs(parabola.overlap - delta));
+          }
+        }
+        ASSERT_TRUE(back.active);
+        EXPECT_NEAR(back.overlap, cubic.overlap, 1e-12 * delta);
+        EXPECT_NEAR(back.weight, cubic.weight, 1e-12);
+        EXPECT_NEAR(back.nx, -cubic.nx, 1e-12);
+        EXPECT_NEAR(back.ny, -cubic.ny, 1e-12);
+        const double eps = 1e-9;
+        for (const auto& [ex, ey] : {std::pair{1.0, 0.0}, std::pair{0.0, 1.0}}) {
+          auto at = [&](double sgn) {
+            return physics::curved_surface_pair(xi - xj + sgn * eps * ex, yi - yj + sgn * eps * ey,
+                                                ni_x, ni_y, -nx, -ny, kappa_i, 0.0, h_i, h_j,
+                                                rate_i, 0.0);
+          };
+          const physics::SurfacePair plus = at(1.0), minus = at(-1.0);
+          if (!plus.active || !minus.active) continue;
+          EXPECT_NEAR((plus.overlap - minus.overlap) / (2.0 * eps),
+                      -(cubic.nx * ex + cubic.ny * ey), 1e-5);
+          const double up = (plus.weight - cubic.weight) / eps,
+                       down = (cubic.weight - minus.weight) / eps;
+          if (std::abs(up - down) > 1e-2 / h_i) continue;  // a hat's apex
+          EXPECT_NEAR(0.5 * (up + down), cubic.dweight * (cubic.tx * ex + cubic.ty * ey),
+                      1e-3 / h_i);
+        }
+      }
+    }
+    std::printf("shift %.2f: weights %.4f, overlap error cubic %+.2f %%, parabola %+.2f %%\n",
+                shift, total, 100.0 * cubic_error / total / delta,
+                100.0 * parabola_error / parabola_total / delta);
+    // (The two hats add up to one within 2.2 % along the involute's curve.)
+    EXPECT_NEAR(total, 1.0, 0.03) << "shift " << shift;
+    EXPECT_LT(std::abs(cubic_error / total), 0.02 * delta) << "shift " << shift;
+    worst_weighted_parabola =
+        std::max(worst_weighted_parabola, std::abs(parabola_error / parabola_total));
+  }
+  std::printf("worst pair of weight > 0.25: cubic %.3f um, parabola %.3f um\n", 1e6 * worst_cubic,
+              1e6 * worst_parabola);
+  EXPECT_GT(pairs, 10);
+  EXPECT_LT(worst_cubic, 0.02 * delta);
+  EXPECT_GT(worst_parabola, 0.1 * delta);
+  EXPECT_GT(worst_weighted_parabola, 0.05 * delta);
+}
+
+// The paper's pinion's flanks as the contact sees them (scene/surfaces.cpp):
+// each outline particle's surface (its normal, curvature and the
+// curvature's rate), extended halfway to its neighbour, meets the
+// neighbour's own within 0.1 um wherever the curvature changes by less than
+// half between them: from the lowest contact (above the undercut, where the
+// fillet cuts the involute at 11 degrees) to the tip. Taken from the chords'
+// normals, with a curvature averaged across that kink, they were 1.1 um
+// apart at the pitch point and 11 um beside the kink, against the contact's
+// 1.4 um approach at 1 kN, and the load stuck to one particle. Nearer the
+// base circle, where the curvature doubles over a spacing, they are up to
+// 1.8 um apart (printed, not held).
+TEST(Contact, FlankParticlesSurfacesMeetTheirNeighbours) {
+  const json job = {{"scene",
+                     {{"type", "rack_pinion"},
+                      {"quasi_static", true},
+                      {"contact_point", "pitch"},
+                      {"pinion", {{"omega_rad_s", 0.0}}},
+                      {"rack", {{"load_N", 1000.0}, {"velocity_m_s", 0.0}}}}}};
+  PreparedJob prepared = prepare_job(job, 1);
+  const Particles& p = prepared.scene.sim.particles;
+  // The surface of particle k at t along its own tangent, and the height of
+  // a point above particle k's surface.
+  auto point = [&](std::size_t k, double t, double& x, double& y) {
+    const double drop =
+        0.5 * p.surf_curvature[k] * t * t + p.surf_curvature_rate[k] * t * t * t / 6.0;
+    x = p.x0[k] - t * p.surf_ny[k] - drop * p.surf_nx[k];
+    y = p.y0[k] + t * p.surf_nx[k] - drop * p.surf_ny[k];
+  };
+  auto height = [&](std::size_t k, double x, double y) {
+    const double dx = x - p.x0[k], dy = y - p.y0[k];
+    const double t = -dx * p.surf_ny[k] + dy * p.surf_nx[k];
+    return dx * p.surf_nx[k] + dy * p.surf_ny[k] + 0.5 * p.surf_curvature[k] * t * t +
+           p.surf_curvature_rate[k] * t * t * t / 6.0;
+  };
+  // Corners and the particles within 2.5 of their spacings of one keep the
+  // tangent-line gap (contact.cpp, build_smoothing).
+  std::vector<char> near_corner(p.n, 0);
+  for (std::size_t c = 0; c < p.n; ++c) {
+    if (p.surf_depth[c] != 0.0 || std::abs(p.surf_curvature[c]) * p.spacing[c] < 0.6) continue;
+    for (std::size_t i = 0; i < p.n; ++i) {
+      if (p.body[i] == p.body[c] &&
+          std::hypot(p.x0[i] - p.x0[c], p.y0[i] - p.y0[c]) < 2.5 * p.spacing[i]) {
+        near_corner[i] = 1;
+      }
+    }
+  }
+  int mid_flank = 0, low_flank = 0;
+  double worst_mid = 0.0, worst_low = 0.0;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    if (p.body[i] != 0 || p.surf_depth[i] != 0.0 || !(p.surf_curvature[i] > 0.0) ||
+        near_corner[i]) {
+      continue;
+    }
+    for (std::size_t j = 0; j < p.n; ++j) {
+      if (j == i || p.body[j] != 0 || p.surf_depth[j] != 0.0 || !(p.surf_curvature[j] > 0.0) ||
+          near_corner[j]) {
+        continue;
+      }
+      const double dx = p.x0[j] - p.x0[i], dy = p.y0[j] - p.y0[i];
+      const double d = std::hypot(dx, dy);
+      const double along = -dx * p.surf_ny[i] + dy * p.surf_nx[i];
+      // The next particle along i's tangent on the same smooth flank: a
+      // spacing away, normals within 30 degrees, neither a corner.
+      if (!(along > 0.0) || d > 1.3 * p.spacing[i] ||
+          p.surf_nx[i] * p.surf_nx[j] + p.surf_ny[i] * p.surf_ny[j] < std::cos(0.5)) {
+        continue;
+      }
+      // Where the curvature changes by less than half between them (the
+      // flank from its lowest contact to the tip), and near the base circle,
+      // where it doubles over a spacing.
+      const double ratio = std::max(p.surf_curvature[j] / p.surf_curvature[i],
+                                    p.surf_curvature[i] / p.surf_curvature[j]);
+      const bool mid = ratio < 1.5;
+      double x = 0.0, y = 0.0;
+      point(i, 0.5 * along, x, y);
+      const double miss = std::abs(height(j, x, y));
+      (mid ? worst_mid : worst_low) = std::max(mid ? worst_mid : worst_low, miss);
+      ++(mid ? mid_flank : low_flank);
+    }
+  }
+  std::printf(
+      "halfway between neighbours: %d pairs on the flank within %.3f um, %d by the base circle "
+      "within %.3f um\n",
+      mid_flank, 1e6 * worst_mid, low_flank, 1e6 * worst_low);
+  EXPECT_LT(worst_mid, 0.15e-6);
+  EXPECT_GT(mid_flank, 20);
+}
+
 // A convex flank against a slightly concave one (a rack flank beside its
 // root fillet): drawn apart step by step, a pair's overlap falls to zero
 // and only then does the pair let go. The early rejection of pairs that are

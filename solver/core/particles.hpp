@@ -62,8 +62,10 @@ struct Particles {
   Column<double> surf_nx, surf_ny, surf_depth, rot;
   // Curvature of the outline at the particle [1/m], positive where the body
   // is convex, averaged over the particle's spacing along the outline; 0 for
-  // surfaces found without an outline (contact_near_field.hpp).
-  Column<double> surf_curvature;
+  // surfaces found without an outline (contact_near_field.hpp). Its rate of
+  // change along the particle's own tangent (-n_y, n_x) [1/m^2]: the
+  // outline's cubic term (contact_surface.hpp, curved_surface_pair).
+  Column<double> surf_curvature, surf_curvature_rate;
 
   void resize(std::size_t count);
   // Frees the arrays only the updated-Lagrangian step uses (density rate,

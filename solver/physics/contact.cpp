@@ -474,7 +474,8 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
         // The pair's geometry with i's normal (ax, ay), seen from i.
         auto geometry = [&](double ax, double ay) {
           return curved ? curved_surface_pair(dxij, dyij, ax, ay, njx, njy, p.surf_curvature[i],
-                                              p.surf_curvature[j], spacing[i], spacing[j])
+                                              p.surf_curvature[j], spacing[i], spacing[j],
+                                              p.surf_curvature_rate[i], p.surf_curvature_rate[j])
                         : surface_pair(dxij, dyij, ax, ay, njx, njy, p.surf_depth[i],
                                        p.surf_depth[j], dx, outline, sag_i, sag_j);
         };
@@ -482,7 +483,8 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
         SurfacePair sp;
         if (i > j) {
           sp = curved ? curved_surface_pair(-dxij, -dyij, njx, njy, nix, niy, p.surf_curvature[j],
-                                            p.surf_curvature[i], spacing[j], spacing[i])
+                                            p.surf_curvature[i], spacing[j], spacing[i],
+                                            p.surf_curvature_rate[j], p.surf_curvature_rate[i])
                       : surface_pair(-dxij, -dyij, njx, njy, nix, niy, p.surf_depth[j],
                                      p.surf_depth[i], dx, outline, sag_j, sag_i);
           sp.nx = -sp.nx;

@@ -7,10 +7,16 @@
 #include <vector>
 
 #include "solver/neighbours/cell_grid.hpp"
+#include "solver/physics/contact_surface.hpp"
 
 namespace gearsph::scenes {
 
 namespace {
+
+// The largest turn between a chord of the outline and the curve it is drawn
+// along (0.1 um from it: 18 mrad on a 2.4 mm fillet radius); a larger one is
+// a corner.
+constexpr double kChordTurnMax = 0.03;  // rad
 
 struct Closest {
   double distance = std::numeric_limits<double>::infinity();
@@ -60,7 +66,19 @@ bool counter_clockwise(const Outline& o) {
 // toward the body's outside as convex.
 struct Turning {
   static constexpr double kSmoothTurn = 10.0 * std::numbers::pi / 180.0;
+  // A kink: a vertex that turns by more than half a degree and four times
+  // as much as either neighbour (a smooth curve's chords turn alike), but
+  // by less than the contact's corner (contact_surface.hpp, whose test reads
+  // a corner's turn from the mean curvature). Where the paper's undercut
+  // pinion's fillet cuts its involute the profile turns by 11 degrees at one
+  // vertex; a curvature averaged across it was twice the involute's there,
+  // and the parabola of the flank particle beside it missed the flank by
+  // 11 um half a spacing away (docs/contact.md).
+  static constexpr double kKinkTurn = 0.5 * std::numbers::pi / 180.0;
+  static constexpr double kKinkOverNeighbours = 4.0;
   std::vector<double> arc, angle;
+  std::vector<char> kink;        // per vertex k (between edges k - 1 and k)
+  std::vector<double> kink_arc;  // their arc lengths, ascending
   double perimeter = 0.0, total_turn = 0.0;
 
   Turning(const Outline& o, bool ccw) {
@@ -81,13 +99,29 @@ struct Turning {
     }
     perimeter = arc[m];
     total_turn = 2.0 * std::numbers::pi;  // a simple closed outline turns once
+    std::vector<double> turn(m);
+    for (std::size_t k = 0; k < m; ++k) {
+      turn[k] = k > 0 ? angle[k] - angle[k - 1] : angle[0] + total_turn - angle[m - 1];
+    }
+    kink.assign(m, 0);
+    for (std::size_t k = 0; k < m; ++k) {
+      const double t = std::abs(turn[k]);
+      const double beside = std::max(std::abs(turn[(k + m - 1) % m]), std::abs(turn[(k + 1) % m]));
+      if (t >= kKinkTurn && t < physics::kCornerTurning && t > kKinkOverNeighbours * beside) {
+        kink[k] = 1;
+        kink_arc.push_back(arc[k]);
+      }
+    }
   }
 
   // Direction at arc length s (any real s: the outline repeats): linear
-  // between the midpoints of edges that meet at less than 10 degrees (a
-  // polyline drawn along a curve, whose curvature then comes out right
-  // whatever the window against the edge length), a step at a vertex with a
-  // larger turn (a corner of the outline).
+  // across a vertex where edges meet at less than 10 degrees (a polyline
+  // drawn along a curve, whose curvature then comes out right whatever the
+  // window against the edge length), over half the shorter edge each side:
+  // between the midpoints of equal chords, and close to the vertex where a
+  // straight edge meets a curve's chords (a rack's flank and its root
+  // fillet), so that the straight edge keeps its direction. A step at a
+  // kink and at a vertex with a larger turn (a corner of the outline).
   double direction(double s) const {
     const std::size_t m = angle.size();
     const double turns = std::floor(s / perimeter);
@@ -110,13 +144,58 @@ struct Turning {
       s_n -= perimeter;
     }
     double a = angle[k];
-    if (std::abs(a_n - a) < kSmoothTurn && s_n != mid) a += (r - mid) / (s_n - mid) * (a_n - a);
+    const bool kinked = kink[after ? (k + 1) % m : k] != 0;
+    if (std::abs(a_n - a) < kSmoothTurn && !kinked && s_n != mid) {
+      const double half = 0.5 * std::min(arc[k + 1] - arc[k], arc[n + 1] - arc[n]);
+      const double from_vertex = std::abs(r - (after ? arc[k + 1] : arc[k]));
+      if (from_vertex < half) a += 0.5 * (1.0 - from_vertex / half) * (a_n - a);
+    }
     return a + turns * total_turn;
   }
 
-  // Mean curvature over [s - w/2, s + w/2]: the turn of the direction across it.
+  // The window [lo, hi] cut back to the kinks nearest s on either side
+  // (corners stay inside it: a corner's turn is what the contact's corner
+  // test reads from the mean curvature).
+  void clip_at_kinks(double s, double& lo, double& hi) const {
+    if (kink_arc.empty()) return;
+    const double turns = std::floor(s / perimeter);
+    const double r = s - turns * perimeter;
+    const auto above = std::upper_bound(kink_arc.begin(), kink_arc.end(), r);
+    const double next = above == kink_arc.end() ? kink_arc.front() + perimeter : *above;  // > r
+    const double prev =
+        above == kink_arc.begin() ? kink_arc.back() - perimeter : *(above - 1);  // <= r
+    const double base = turns * perimeter;
+    lo = std::max(lo, base + prev);
+    hi = std::min(hi, base + next);
+  }
+
+  // The mean curvature over [lo, hi], a stretch without a kink inside: the
+  // turn of the direction across it (just inside it: the direction steps at
+  // a kink).
+  double turn_rate(double lo, double hi) const {
+    const double width = hi - lo;
+    if (!(width > 0.0)) return 0.0;
+    const double in = 1e-9 * width;
+    return (direction(hi - in) - direction(lo + in)) / (width - 2.0 * in);
+  }
+
+  // Mean curvature over [s - w/2, s + w/2], not across a kink.
   double mean_curvature(double s, double w) const {
-    return (direction(s + 0.5 * w) - direction(s - 0.5 * w)) / w;
+    double lo = s - 0.5 * w, hi = s + 0.5 * w;
+    clip_at_kinks(s, lo, hi);
+    return hi - lo > 1e-3 * w ? turn_rate(lo, hi) : 0.0;
+  }
+
+  // The rate of change of the mean curvature along the travel at s: the
+  // windows [s - w, s] and [s, s + w], each cut back at kinks on s's side,
+  // between their middles.
+  double curvature_rate(double s, double w) const {
+    double lo = s - w, hi = s + w;
+    clip_at_kinks(s, lo, hi);
+    const double up_centre = 0.5 * (s + hi), down_centre = 0.5 * (lo + s);
+    const double span = up_centre - down_centre;
+    if (!(span > 0.25 * w)) return 0.0;
+    return (turn_rate(s, hi) - turn_rate(lo, s)) / span;
   }
 };
 
@@ -151,11 +230,32 @@ void from_outline(Simulation& sim, const Body& body, const Outline& o) {
     });
     if (best.distance <= reach) {
       p.surf_depth[i] = body.fitted ? 0.0 : best.distance;
-      p.surf_nx[i] = best.nx;
-      p.surf_ny[i] = best.ny;
       const double s =
           turning.arc[best.edge] + best.t * (turning.arc[best.edge + 1] - turning.arc[best.edge]);
-      p.surf_curvature[i] = turning.mean_curvature(s, p.spacing[i]);
+      // The normal of the curve the outline's chords are drawn along, not
+      // of the nearest chord: a chord 0.1 um from an 8 mm radius is 0.08 mm
+      // long and turns by 5 mrad, which put neighbouring flank particles'
+      // surfaces a micron apart half a spacing away (docs/contact.md).
+      // Travel along a counter-clockwise outline has the body on its left.
+      // At a corner (the curve's direction steps) the nearest edge's normal
+      // stays.
+      const double travel = ccw ? turning.direction(s) : -turning.direction(s);
+      const double nx = ccw ? std::sin(travel) : -std::sin(travel);
+      const double ny = ccw ? -std::cos(travel) : std::cos(travel);
+      const bool corner = nx * best.nx + ny * best.ny < std::cos(kChordTurnMax);
+      p.surf_nx[i] = corner ? best.nx : nx;
+      p.surf_ny[i] = corner ? best.ny : ny;
+      const double w = p.spacing[i];
+      const double kappa = turning.mean_curvature(s, w);
+      p.surf_curvature[i] = kappa;
+      // The particle's tangent runs with the travel on a counter-clockwise
+      // outline. The rate is bounded by half the curvature over a spacing,
+      // so that the surface stays convex where the parabola's was (near an
+      // involute's base circle the curvature changes by more than itself over
+      // a spacing).
+      const double rate = turning.curvature_rate(s, w);
+      const double bound = 0.5 * std::abs(kappa) / w;
+      p.surf_curvature_rate[i] = (ccw ? 1.0 : -1.0) * std::clamp(rate, -bound, bound);
     }
   }
 }
