@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <utility>
 #include <vector>
 
 #include "solver/job/job.hpp"
@@ -29,8 +30,12 @@ nlohmann::json static_check_at(const nlohmann::json& point) {
 }
 
 TEST(ContactPoint, LoadSitsWhereAskedAndMeshStiffnessHoldsBetweenParticles) {
-  std::vector<double> stiffness;
-  for (const double radius_mm : {26.0, 26.1, 26.2}) {
+  // The finite-element pair at each radius (`gearsph fe`, 0.1 mm elements,
+  // the bodies' approach at the contact centres; docs/gears.md) [N/(mm um)].
+  const std::vector<std::pair<double, double>> fe_pair = {
+      {26.0, 12.45}, {26.1, 12.34}, {26.2, 12.21}, {26.5, 11.82}, {26.7, 11.56}, {26.9, 11.28}};
+  std::vector<double> against_fe;
+  for (const auto& [radius_mm, fe] : fe_pair) {
     PreparedJob prepared = prepare_job(static_check_at(radius_mm), 1);
     const RunResult result = run_job(prepared);
     ASSERT_EQ(result.status, "completed") << result.message;
@@ -39,19 +44,24 @@ TEST(ContactPoint, LoadSitsWhereAskedAndMeshStiffnessHoldsBetweenParticles) {
     // pinion is turned so that the true outlines touch there, and the
     // particles' surfaces (each one's normal, curvature and the curvature's
     // rate) meet their neighbours' within 0.1 um: the force acts within
-    // 0.004 mm of the asked radius over 25.90-26.30 mm. With parabolas from
-    // the chords' normals it was -0.108 to -0.018 mm off, and with the gap
-    // between particles 0.09-0.12 mm (docs/contact.md).
-    EXPECT_NEAR(sc.at("measured_load_radius_m").get<double>(), 1e-3 * radius_mm, 0.02e-3)
+    // 0.006 mm of the asked radius over 25.90-26.70 mm. Where the contact
+    // falls within about 0.05 mm of a particle the force sits on that
+    // particle: 26.875 mm for 26.9, and 0.056 mm off over 23.6-24.6 mm at
+    // worst (ISO's sigma_F0 moves by 0.6 % for that). With parabolas from
+    // the chords' normals it was -0.108 to -0.018 mm off, with the gap
+    // between particles 0.09-0.12 mm, and above 26.3 mm, within 2.5
+    // spacings of the tip corner, it stuck to the last smooth particle
+    // (docs/contact.md).
+    EXPECT_NEAR(sc.at("measured_load_radius_m").get<double>(), 1e-3 * radius_mm, 0.04e-3)
         << radius_mm << " mm";
     EXPECT_NEAR(sc.at("load_carried_by_tooth0").get<double>(), 1.0, 0.005);
-    stiffness.push_back(sc.at("mesh_stiffness_N_per_mm_um").get<double>());
+    against_fe.push_back(sc.at("mesh_stiffness_N_per_mm_um").get<double>() / fe);
   }
-  const auto [lo, hi] = std::minmax_element(stiffness.begin(), stiffness.end());
-  // The finite-element pair falls by 1.9 % over these 0.2 mm (12.45, 12.34
-  // and 12.21 at the contact centres; docs/gears.md); the particles by 1.8 %
-  // (11.39, 11.27, 11.19).
-  EXPECT_LT(*hi / *lo - 1.0, 0.03) << "mesh stiffness " << *lo << " .. " << *hi;
+  // The stiffness follows the FE pair's as the load climbs the flank: 8.2 to
+  // 8.7 % below it over these radii. With the tip corner's zone at 2.5
+  // spacings it was 8.3 % below at 26.2 mm and 29 % at 26.7 mm.
+  const auto [lo, hi] = std::minmax_element(against_fe.begin(), against_fe.end());
+  EXPECT_LT(*hi / *lo - 1.0, 0.03) << "against FE " << *lo << " .. " << *hi;
 }
 
 // The fillet issue's clean field: the health check's zig-zag indicator (a
