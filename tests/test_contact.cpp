@@ -217,6 +217,35 @@ TEST(Contact, SurfaceCurvatureIsTheOutlines) {
   EXPECT_GT(flat, 2u);
 }
 
+// A pair seen from its other end is the same pair with its normal flipped,
+// and its force is the gradient of its energy: (n, dweight) are the
+// overlap's and the weight's derivatives in x_i - x_j, by central
+// differences of `at` (the pair at x_i - x_j moved by (ddx, ddy)), away from
+// a hat's apex, where the weight has a kink. Returns the directions
+// checked there.
+template <class At>
+int expect_consistent_pair(const physics::SurfacePair& sp, const physics::SurfacePair& back,
+                           double overlap_scale, double h, At at) {
+  EXPECT_NEAR(back.overlap, sp.overlap, 1e-12 * overlap_scale);
+  EXPECT_NEAR(back.weight, sp.weight, 1e-12);
+  EXPECT_NEAR(back.nx, -sp.nx, 1e-12);
+  EXPECT_NEAR(back.ny, -sp.ny, 1e-12);
+  const double eps = 1e-9;
+  int smooth = 0;
+  for (const auto& [ex, ey] : {std::pair{1.0, 0.0}, std::pair{0.0, 1.0}}) {
+    const physics::SurfacePair plus = at(eps * ex, eps * ey), minus = at(-eps * ex, -eps * ey);
+    if (!plus.active || !minus.active) continue;
+    EXPECT_NEAR((plus.overlap - minus.overlap) / (2.0 * eps), -(sp.nx * ex + sp.ny * ey), 1e-5);
+    const double up = (plus.weight - sp.weight) / eps, down = (sp.weight - minus.weight) / eps;
+    if (std::abs(up - down) > 1e-2 / h) continue;
+    ++smooth;
+    EXPECT_NEAR(back.dweight * (back.tx * ex + back.ty * ey),
+                -sp.dweight * (sp.tx * ex + sp.ty * ey), 1e-6 / h);
+    EXPECT_NEAR(0.5 * (up + down), sp.dweight * (sp.tx * ex + sp.ty * ey), 1e-3 / h);
+  }
+  return smooth;
+}
+
 // The overlap of two curved outlines (contact_surface.hpp): rows of
 // particles on a circle pressed into a line and into another circle, shifted
 // along each other by any fraction of a spacing. Every pair around the
@@ -274,32 +303,10 @@ TEST(Contact, CurvedOutlinesTouchOnceAtTheirOverlapWhereverTheContactFalls) {
           const double len = std::hypot(sp.nx, sp.ny);
           EXPECT_NEAR(sp.nx / len, ux, 1e-3);
           EXPECT_NEAR(sp.ny / len, uy, 1e-3);
-          EXPECT_NEAR(back.overlap, sp.overlap, 1e-12 * delta);
-          EXPECT_NEAR(back.weight, sp.weight, 1e-12);
-          EXPECT_NEAR(back.nx, -sp.nx, 1e-12);
-          EXPECT_NEAR(back.ny, -sp.ny, 1e-12);
-          // The force is the gradient of the pair's energy: (n, dweight) are
-          // the overlap's and the weight's derivatives in x_i - x_j.
-          const double eps = 1e-9;
-          for (const auto& [ex, ey] : {std::pair{1.0, 0.0}, std::pair{0.0, 1.0}}) {
-            auto at = [&](double sgn) {
-              return physics::curved_surface_pair(xi - xj + sgn * eps * ex,
-                                                  yi - yj + sgn * eps * ey, ni_x, ni_y, nj_x, nj_y,
-                                                  kappa_i, kappa_j, h_i, h_j);
-            };
-            const physics::SurfacePair plus = at(1.0), minus = at(-1.0);
-            if (!plus.active || !minus.active) continue;
-            EXPECT_NEAR((plus.overlap - minus.overlap) / (2.0 * eps), -(sp.nx * ex + sp.ny * ey),
-                        1e-5);
-            // (Not across a hat's apex, where the weight has a kink.)
-            const double up = (plus.weight - sp.weight) / eps,
-                         down = (sp.weight - minus.weight) / eps;
-            if (std::abs(up - down) > 1e-2 / h_i) continue;
-            ++smooth;
-            EXPECT_NEAR(back.dweight * (back.tx * ex + back.ty * ey),
-                        -sp.dweight * (sp.tx * ex + sp.ty * ey), 1e-6 / h_i);
-            EXPECT_NEAR(0.5 * (up + down), sp.dweight * (sp.tx * ex + sp.ty * ey), 1e-3 / h_i);
-          }
+          smooth += expect_consistent_pair(sp, back, delta, h_i, [&](double ddx, double ddy) {
+            return physics::curved_surface_pair(xi - xj + ddx, yi - yj + ddy, ni_x, ni_y, nj_x,
+                                                nj_y, kappa_i, kappa_j, h_i, h_j);
+          });
           total += sp.weight;
         }
       }
@@ -370,27 +377,10 @@ TEST(Contact, CurvedPairsFollowAnInvolutesChangingCurvature) {
           }
         }
         ASSERT_TRUE(back.active);
-        EXPECT_NEAR(back.overlap, cubic.overlap, 1e-12 * delta);
-        EXPECT_NEAR(back.weight, cubic.weight, 1e-12);
-        EXPECT_NEAR(back.nx, -cubic.nx, 1e-12);
-        EXPECT_NEAR(back.ny, -cubic.ny, 1e-12);
-        const double eps = 1e-9;
-        for (const auto& [ex, ey] : {std::pair{1.0, 0.0}, std::pair{0.0, 1.0}}) {
-          auto at = [&](double sgn) {
-            return physics::curved_surface_pair(xi - xj + sgn * eps * ex, yi - yj + sgn * eps * ey,
-                                                ni_x, ni_y, -nx, -ny, kappa_i, 0.0, h_i, h_j,
-                                                rate_i, 0.0);
-          };
-          const physics::SurfacePair plus = at(1.0), minus = at(-1.0);
-          if (!plus.active || !minus.active) continue;
-          EXPECT_NEAR((plus.overlap - minus.overlap) / (2.0 * eps),
-                      -(cubic.nx * ex + cubic.ny * ey), 1e-5);
-          const double up = (plus.weight - cubic.weight) / eps,
-                       down = (cubic.weight - minus.weight) / eps;
-          if (std::abs(up - down) > 1e-2 / h_i) continue;  // a hat's apex
-          EXPECT_NEAR(0.5 * (up + down), cubic.dweight * (cubic.tx * ex + cubic.ty * ey),
-                      1e-3 / h_i);
-        }
+        expect_consistent_pair(cubic, back, delta, h_i, [&](double ddx, double ddy) {
+          return physics::curved_surface_pair(xi - xj + ddx, yi - yj + ddy, ni_x, ni_y, -nx, -ny,
+                                              kappa_i, 0.0, h_i, h_j, rate_i, 0.0);
+        });
       }
     }
     std::printf("shift %.2f: weights %.4f, overlap error cubic %+.2f %%, parabola %+.2f %%\n",
