@@ -135,12 +135,10 @@ bool contact_smoothing(const Simulation& sim) {
 
 namespace {
 
-// How near a corner, in spacings, a particle keeps the tangent-line gap. It
-// was 2.5 while each particle's curvature was averaged over a window that
-// could reach the corner; the contact above the paper's HPSTC (26.4-27.1 mm)
-// then sat on the last smooth particle, 12-38 % softer than FE. At 1.5 it
-// follows the flank there, 8 % below FE as at the pitch point
-// (docs/contact.md).
+// How near a corner, in spacings, a particle keeps the tangent-line gap:
+// beyond a spacing neither its hat nor its curvature's rate reaches the
+// corner, and half a spacing more allows for graded rows (docs/contact.md,
+// "The tip corner's zone").
 constexpr double kCornerZone = 1.5;
 
 // The smoothing tables of contact_smoothing.hpp from the reference
