@@ -488,6 +488,72 @@ TEST(Contact, FlankParticlesSurfacesMeetTheirNeighbours) {
   EXPECT_GT(mid_flank, 20);
 }
 
+// The curvature a Hertz contact meets (the near field's, and the gear's
+// contact-pressure sub-model's) leaves out a corner's turn: on the paper's
+// pinion the tip corner turns by 54 degrees at one vertex, which averaged
+// over a spacing read 26 times the involute's curvature there and made the
+// tip's contact law and Hertz pressure follow the spacing (docs/contact.md).
+TEST(Contact, HertzCurvatureLeavesOutACornersTurn) {
+  const json job = {{"scene",
+                     {{"type", "rack_pinion"},
+                      {"quasi_static", true},
+                      {"contact_point", "tip"},
+                      {"pinion", {{"omega_rad_s", 0.0}}},
+                      {"rack", {{"load_N", 1000.0}, {"velocity_m_s", 0.0}}}}}};
+  PreparedJob prepared = prepare_job(job, 1);
+  const Particles& p = prepared.scene.sim.particles;
+  const double rb = 24e-3 * std::cos(20.0 * std::numbers::pi / 180.0), ra = 28e-3;
+  double cx = 0.0, cy = 0.0;  // the pinion's centre: its hub's axis
+  bool hub = false;
+  for (const Motion& m : prepared.scene.sim.motions) {
+    if (m.name != "pinion hub") continue;
+    cx = m.cx;
+    cy = m.cy;
+    hub = true;
+  }
+  ASSERT_TRUE(hub);
+  auto radius = [&](std::size_t i) { return std::hypot(p.x0[i] - cx, p.y0[i] - cy); };
+  std::vector<std::size_t> tips;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    if (p.body[i] == 0 && p.surf_depth[i] == 0.0 &&
+        std::abs(p.surf_curvature[i]) * p.spacing[i] >= 0.6 && std::abs(radius(i) - ra) < 1e-6) {
+      tips.push_back(i);
+    }
+  }
+  ASSERT_GE(tips.size(), 2u);
+  int beside = 0;
+  for (const std::size_t c : tips) {
+    // The corner's own particle: between its two sides', the tip circle's
+    // 1/r_a and the involute's 1/sqrt(r_a^2 - r_b^2) (its mean curvature
+    // holds the corner's turn: 0.6 rad a spacing or more).
+    EXPECT_GT(p.surf_hertz_curvature[c], 0.95 / ra) << c;
+    EXPECT_LT(p.surf_hertz_curvature[c], 1.05 / std::sqrt(ra * ra - rb * rb)) << c;
+    // Flank particles within a spacing of it: the involute's at their radius.
+    for (std::size_t i = 0; i < p.n; ++i) {
+      const double d = std::hypot(p.x0[i] - p.x0[c], p.y0[i] - p.y0[c]);
+      const double r = radius(i);
+      if (i == c || p.body[i] != 0 || p.surf_depth[i] != 0.0 || d >= p.spacing[i] ||
+          r > ra - 1e-6) {
+        continue;
+      }
+      ++beside;
+      const double involute = 1.0 / std::sqrt(r * r - rb * rb);
+      EXPECT_NEAR(p.surf_hertz_curvature[i], involute, 0.1 * involute) << i << " at r " << r;
+    }
+  }
+  EXPECT_GE(beside, 2);
+  // Away from corners and kinks the two are the same number.
+  int away = 0;
+  for (std::size_t i = 0; i < p.n; ++i) {
+    if (p.body[i] != 0 || p.surf_depth[i] != 0.0 || radius(i) < 23e-3 || radius(i) > 26e-3) {
+      continue;
+    }
+    ++away;
+    EXPECT_EQ(p.surf_hertz_curvature[i], p.surf_curvature[i]) << i;
+  }
+  EXPECT_GT(away, 10);
+}
+
 // A convex flank against a slightly concave one (a rack flank beside its
 // root fillet): drawn apart step by step, a pair's overlap falls to zero
 // and only then does the pair let go. The early rejection of pairs that are

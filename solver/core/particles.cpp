@@ -24,6 +24,7 @@ void Particles::resize(std::size_t count) {
     v->resize(count, 0.0);
   }
   surf_curvature_rate.resize(count, 0.0);
+  surf_hertz_curvature.resize(count, 0.0);
 }
 
 void Particles::release_updated_lagrangian() {

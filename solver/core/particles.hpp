@@ -64,8 +64,13 @@ struct Particles {
   // is convex, averaged over the particle's spacing along the outline; 0 for
   // surfaces found without an outline (contact_near_field.hpp). Its rate of
   // change along the particle's own tangent (-n_y, n_x) [1/m^2]: the
-  // outline's cubic term (contact_surface.hpp, curved_surface_pair).
-  Column<double> surf_curvature, surf_curvature_rate;
+  // outline's cubic term (contact_surface.hpp, curved_surface_pair). And
+  // the curvature a Hertz contact there meets: the same mean without the
+  // turn of a corner within the spacing (a sharp corner has no Hertz radius;
+  // its turn over a spacing is one that follows the spacing), a corner's
+  // own particle taking its two sides' (contact_near_field.hpp, the Hertz
+  // sub-model of the gear's contact pressure).
+  Column<double> surf_curvature, surf_curvature_rate, surf_hertz_curvature;
 
   void resize(std::size_t count);
   // Frees the arrays only the updated-Lagrangian step uses (density rate,

@@ -534,7 +534,7 @@ void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
           surface && config.near_field
               ? near_field(e_star, plane_strain_compliance(mi), plane_strain_compliance(mj),
                            st.log_moment[i], st.log_moment[j],
-                           p.surf_curvature[i] + p.surf_curvature[j],
+                           p.surf_hertz_curvature[i] + p.surf_hertz_curvature[j],
                            kStiffSpring * e_star * vol / (dx * dx))
               : NearField{};
       auto law_of = [&](double ov) {

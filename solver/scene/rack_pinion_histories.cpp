@@ -1,6 +1,7 @@
 // The rack-and-pinion scene's history columns (docs/gears.md, What a run
 // reports): what a gear engineer follows through a run, read from the
 // particles at every history row.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -111,12 +112,18 @@ void add_tooth_load_histories(Scene& scene, const GearLayout& L, int k,
        }});
   // A Hertz sub-model on the resolved load: the line-contact peak pressure
   // for the tooth's contact force per unit face width and the curvature of
-  // its flank where the force acts (force-weighted), the rack flank being
-  // straight. The basis of ISO 6336-2's sigma_H; not read from particles.
+  // its involute flank, 1 / sqrt(r^2 - r_b^2), at the radius where the force
+  // acts (force-weighted; held between the form and tip circles), the rack
+  // flank being straight. The basis of ISO 6336-2's sigma_H; not read from
+  // particles. At the tip the contact meets the involute's end, not the
+  // corner's turn, which has no Hertz radius (docs/gears.md).
+  const double cx = L.cx, cy = L.cy, rb = L.base_radius;
+  const double r_lo = std::max(L.form_radius, rb), r_hi = L.tip_radius;
   scene.columns.push_back(
-      {"contact_pressure" + sk + "_Pa", [tooth_of, k, e_star](const Simulation& s2) {
+      {"contact_pressure" + sk + "_Pa",
+       [tooth_of, k, e_star, cx, cy, rb, r_lo, r_hi](const Simulation& s2) {
          const Particles& q = s2.particles;
-         double fx = 0, fy = 0, wsum = 0, ksum = 0;
+         double fx = 0, fy = 0, wsum = 0, rsum = 0;
          for (std::size_t i = 0; i < q.n; ++i) {
            if (tooth_of[i] != k) continue;
            const double ax = q.contact_ax[i], ay = q.contact_ay[i];
@@ -124,10 +131,12 @@ void add_tooth_load_histories(Scene& scene, const GearLayout& L, int k,
            fy += q.mass[i] * ay;
            const double w = q.mass[i] * std::hypot(ax, ay);
            wsum += w;
-           ksum += w * q.surf_curvature[i];
+           rsum += w * std::hypot(q.x[i] - cx, q.y[i] - cy);
          }
-         return wsum > 0 ? physics::hertz_peak_pressure(std::hypot(fx, fy), e_star, ksum / wsum)
-                         : 0.0;
+         if (!(wsum > 0)) return 0.0;
+         const double r = std::clamp(rsum / wsum, r_lo, r_hi);
+         const double rho = std::sqrt(std::max(r * r - rb * rb, 0.0));
+         return rho > 0 ? physics::hertz_peak_pressure(std::hypot(fx, fy), e_star, 1.0 / rho) : 0.0;
        }});
 }
 

@@ -79,6 +79,9 @@ struct Turning {
   std::vector<double> arc, angle;
   std::vector<char> kink;        // per vertex k (between edges k - 1 and k)
   std::vector<double> kink_arc;  // their arc lengths, ascending
+  // The arc lengths of the kinks and of the corners (a vertex turning by
+  // the contact's corner or more), ascending: where a Hertz radius ends.
+  std::vector<double> break_arc;
   double perimeter = 0.0, total_turn = 0.0;
 
   Turning(const Outline& o, bool ccw) {
@@ -111,6 +114,7 @@ struct Turning {
         kink[k] = 1;
         kink_arc.push_back(arc[k]);
       }
+      if (kink[k] || t >= physics::kCornerTurning) break_arc.push_back(arc[k]);
     }
   }
 
@@ -186,6 +190,35 @@ struct Turning {
     return hi - lo > 1e-3 * w ? turn_rate(lo, hi) : 0.0;
   }
 
+  // The curvature a Hertz contact at s meets: the mean over
+  // [s - w/2, s + w/2] cut back at the kinks and corners on either side,
+  // without the step of one at s itself (a corner's particle: the mean of
+  // its two sides).
+  double hertz_curvature(double s, double w) const {
+    double lo = s - 0.5 * w, hi = s + 0.5 * w;
+    const double in = 1e-9 * w;
+    bool own = false;  // a break at s
+    if (!break_arc.empty()) {
+      const double turns = std::floor(s / perimeter);
+      const double r = s - turns * perimeter, base = turns * perimeter;
+      // The last break before s and the first after it, continued across
+      // the outline's start; a break within `in` of s is s's own.
+      const auto after = std::upper_bound(break_arc.begin(), break_arc.end(), r + in);
+      const double next = after == break_arc.end() ? break_arc.front() + perimeter : *after;
+      const auto before = std::lower_bound(break_arc.begin(), break_arc.end(), r - in);
+      const double prev =
+          before == break_arc.begin() ? break_arc.back() - perimeter : *(before - 1);
+      lo = std::max(lo, base + prev);
+      hi = std::min(hi, base + next);
+      own = after != before;
+    }
+    if (!(hi - lo > 1e-3 * w)) return 0.0;
+    if (!own) return turn_rate(lo, hi);
+    const double turn =
+        (direction(s - in) - direction(lo + in)) + (direction(hi - in) - direction(s + in));
+    return turn / (hi - lo);
+  }
+
   // The rate of change of the mean curvature along the travel at s: the
   // windows [s - w, s] and [s, s + w], each cut back at kinks on s's side,
   // between their middles.
@@ -248,6 +281,7 @@ void from_outline(Simulation& sim, const Body& body, const Outline& o) {
       const double w = p.spacing[i];
       const double kappa = turning.mean_curvature(s, w);
       p.surf_curvature[i] = kappa;
+      p.surf_hertz_curvature[i] = turning.hertz_curvature(s, w);
       // The particle's tangent runs with the travel on a counter-clockwise
       // outline. The rate is bounded by half the curvature over a spacing,
       // so that the surface stays convex where the parabola's was (near an
