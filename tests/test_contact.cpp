@@ -15,6 +15,7 @@
 #include "solver/physics/contact_seed_penalty.hpp"
 #include "solver/physics/contact_surface.hpp"
 #include "solver/run/runner.hpp"
+#include "tests/support/paper_static_check.hpp"
 
 namespace gearsph {
 namespace {
@@ -412,13 +413,7 @@ TEST(Contact, CurvedPairsFollowAnInvolutesChangingCurvature) {
 // base circle, where the curvature doubles over a spacing, they are up to
 // 1.8 um apart (printed, not held).
 TEST(Contact, FlankParticlesSurfacesMeetTheirNeighbours) {
-  const json job = {{"scene",
-                     {{"type", "rack_pinion"},
-                      {"quasi_static", true},
-                      {"contact_point", "pitch"},
-                      {"pinion", {{"omega_rad_s", 0.0}}},
-                      {"rack", {{"load_N", 1000.0}, {"velocity_m_s", 0.0}}}}}};
-  PreparedJob prepared = prepare_job(job, 1);
+  PreparedJob prepared = prepare_job(testing_support::paper_static_check("pitch"), 1);
   const Particles& p = prepared.scene.sim.particles;
   // The surface of particle k at t along its own tangent, and the height of
   // a point above particle k's surface.
@@ -494,13 +489,7 @@ TEST(Contact, FlankParticlesSurfacesMeetTheirNeighbours) {
 // over a spacing read 26 times the involute's curvature there and made the
 // tip's contact law and Hertz pressure follow the spacing (docs/contact.md).
 TEST(Contact, HertzCurvatureLeavesOutACornersTurn) {
-  const json job = {{"scene",
-                     {{"type", "rack_pinion"},
-                      {"quasi_static", true},
-                      {"contact_point", "tip"},
-                      {"pinion", {{"omega_rad_s", 0.0}}},
-                      {"rack", {{"load_N", 1000.0}, {"velocity_m_s", 0.0}}}}}};
-  PreparedJob prepared = prepare_job(job, 1);
+  PreparedJob prepared = prepare_job(testing_support::paper_static_check("tip"), 1);
   const Particles& p = prepared.scene.sim.particles;
   const double rb = 24e-3 * std::cos(20.0 * std::numbers::pi / 180.0), ra = 28e-3;
   double cx = 0.0, cy = 0.0;  // the pinion's centre: its hub's axis

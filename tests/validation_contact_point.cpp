@@ -17,19 +17,12 @@
 
 #include "solver/job/job.hpp"
 #include "solver/run/runner.hpp"
+#include "tests/support/paper_static_check.hpp"
 
 namespace gearsph {
 namespace {
 
-// The static check at the default particles, 1 kN on tooth 0 at a point.
-nlohmann::json static_check_at(const nlohmann::json& point) {
-  return {{"scene",
-           {{"type", "rack_pinion"},
-            {"quasi_static", true},
-            {"contact_point", point},
-            {"pinion", {{"omega_rad_s", 0.0}}},
-            {"rack", {{"load_N", 1000.0}, {"velocity_m_s", 0.0}}}}}};
-}
+using testing_support::paper_static_check;
 
 TEST(ContactPoint, LoadSitsWhereAskedAndMeshStiffnessHoldsBetweenParticles) {
   // The finite-element pair at each radius (`gearsph fe`, 0.1 mm elements,
@@ -38,7 +31,7 @@ TEST(ContactPoint, LoadSitsWhereAskedAndMeshStiffnessHoldsBetweenParticles) {
       {26.0, 12.45}, {26.1, 12.34}, {26.2, 12.21}, {26.5, 11.82}, {26.7, 11.56}, {26.9, 11.28}};
   std::vector<double> against_fe;
   for (const auto& [radius_mm, fe] : fe_pair) {
-    PreparedJob prepared = prepare_job(static_check_at(radius_mm), 1);
+    PreparedJob prepared = prepare_job(paper_static_check(radius_mm), 1);
     const RunResult result = run_job(prepared);
     ASSERT_EQ(result.status, "completed") << result.message;
     const nlohmann::json& sc = result.summary.at("analysis").at("static_check");
@@ -73,7 +66,7 @@ TEST(ContactPoint, LoadSitsWhereAskedAndMeshStiffnessHoldsBetweenParticles) {
 // the sub-model then gave 1.52 GPa and the mesh stiffness was 20.5 % below
 // the FE pair's.
 TEST(ContactPoint, TipContactMeetsTheInvolutesEnd) {
-  PreparedJob prepared = prepare_job(static_check_at("tip"), 1);
+  PreparedJob prepared = prepare_job(paper_static_check("tip"), 1);
   const RunResult result = run_job(prepared);
   ASSERT_EQ(result.status, "completed") << result.message;
   const nlohmann::json& sc = result.summary.at("analysis").at("static_check");
@@ -100,7 +93,7 @@ TEST(ContactPoint, TipContactMeetsTheInvolutesEnd) {
 // lattice).
 TEST(ContactPoint, StressFieldIsCleanAtTheDefaults) {
   for (const char* point : {"pitch", "lpstc"}) {
-    PreparedJob prepared = prepare_job(static_check_at(point), 1);
+    PreparedJob prepared = prepare_job(paper_static_check(point), 1);
     const RunResult result = run_job(prepared);
     ASSERT_EQ(result.status, "completed") << result.message;
     EXPECT_LT(result.summary.at("health").at("measures").at("zigzag_final").get<double>(), 0.3)
