@@ -62,7 +62,7 @@ TEST(ContactPoint, LoadSitsWhereAskedAndMeshStiffnessHoldsBetweenParticles) {
 // The tip: the load on the tooth's corner, where the involute ends. The
 // contact's near field and the Hertz sub-model take the involute's
 // curvature there, not the corner's turn averaged over a spacing
-// (Contact.HertzCurvatureLeavesOutACornersTurn), which read 26 times it:
+// (Contact.HertzCurvatureLeavesOutACornersTurn), which read 23 times it:
 // the sub-model then gave 1.52 GPa and the mesh stiffness was 20.5 % below
 // the FE pair's.
 TEST(ContactPoint, TipContactMeetsTheInvolutesEnd) {
