@@ -367,7 +367,7 @@ void add_static_contact_pressure(nlohmann::json& sc, const GearLayout& L, const 
   sc["hertz_peak_pressure_Pa"] = hertz;
   sc["iso_sigma_H0_Pa"] = iso_h;
   sc["hertz_peak_pressure_note"] =
-      "Hertz line contact on tooth 0's resolved force and its flank's curvature where the "
+      "Hertz line contact on tooth 0's resolved force and its involute's curvature where the "
       "force acts (a sub-model, not read from particles); ISO's sigma_H0 is the same at the "
       "pitch point";
 }
