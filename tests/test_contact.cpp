@@ -483,11 +483,11 @@ TEST(Contact, FlankParticlesSurfacesMeetTheirNeighbours) {
   EXPECT_GT(mid_flank, 20);
 }
 
-// The curvature a Hertz contact meets (the near field's, and the gear's
-// contact-pressure sub-model's) leaves out a corner's turn: on the paper's
-// pinion the tip corner turns by 54 degrees at one vertex, which averaged
-// over a spacing read 23 times the involute's curvature there and made the
-// tip's contact law and Hertz pressure follow the spacing (docs/contact.md).
+// The curvature a Hertz contact meets (the near field's) leaves out a
+// corner's turn: on the paper's pinion the tip corner turns by 54 degrees
+// at one vertex, which averaged over a spacing read 23 times the
+// involute's curvature there and made the tip's contact law follow the
+// spacing (docs/contact.md).
 TEST(Contact, HertzCurvatureLeavesOutACornersTurn) {
   PreparedJob prepared = prepare_job(testing_support::paper_static_check("tip"), 1);
   const Particles& p = prepared.scene.sim.particles;

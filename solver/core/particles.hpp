@@ -68,8 +68,8 @@ struct Particles {
   // the curvature a Hertz contact there meets: the same mean without the
   // turn of a corner within the spacing (a sharp corner has no Hertz radius;
   // its turn over a spacing is one that follows the spacing), a corner's
-  // own particle taking its two sides' (contact_near_field.hpp, the Hertz
-  // sub-model of the gear's contact pressure).
+  // own particle taking its two sides' (the near field's curvature,
+  // contact_near_field.hpp).
   Column<double> surf_curvature, surf_curvature_rate, surf_hertz_curvature;
 
   void resize(std::size_t count);
