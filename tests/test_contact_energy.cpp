@@ -3,8 +3,8 @@
 // energy it stores, checked by finite differences in the gear's static
 // check; and that energy goes only where the overlap goes.
 //
-// The static check at coarse flanks (fine spacing 0.48 mm, so the flanks
-// are 0.72 and 0.96 mm apart) placed at the HPSTC: a rack flank particle
+// The static check at coarse flanks (fine spacing 0.48 mm, so the flanks'
+// particles are 0.72 mm apart) placed at the HPSTC: a rack flank particle
 // beside the root fillet is slightly concave there, and the early rejection
 // of pairs that are apart once dropped a pair that still overlapped
 // (contact_surface.hpp, curved_surface_pair). The balance lost 2.8e-4 J/m
@@ -43,8 +43,8 @@ TEST(ContactEnergy, ForcesAreTheGradientOfTheStoredEnergyAndItGoesOnlyWithTheOve
   Simulation sim = coarse_flank_check();
   integrate::initialise(sim);
   // Placed touching; the rack's load presses the flanks into each other
-  // within a few steps.
-  for (int s = 0; s < 400 && !(diagnostics::energy(sim).contact > 0.0); ++s) integrate::step(sim);
+  // within some 420 steps.
+  for (int s = 0; s < 1000 && !(diagnostics::energy(sim).contact > 0.0); ++s) integrate::step(sim);
   const double start = diagnostics::energy(sim).total();
   ASSERT_GT(diagnostics::energy(sim).contact, 0.0);
   double drift = 0.0;

@@ -153,8 +153,11 @@ void build_smoothing(Simulation& sim) {
   }
   std::sort(surface.begin(), surface.end(),
             [&](std::uint32_t a, std::uint32_t b) { return p.x0[a] < p.x0[b]; });
+  auto spread_radius = [&](std::uint32_t i) {
+    return reach * p.spacing[i] * sim.bodies[p.body[i]].contact_spread_scale;
+  };
   double widest = 0.0;
-  for (std::uint32_t i : surface) widest = std::max(widest, reach * p.spacing[i]);
+  for (std::uint32_t i : surface) widest = std::max(widest, spread_radius(i));
   std::vector<std::vector<std::pair<std::uint32_t, double>>> rows(p.n);
   // Particles with a corner of their body's surface near them (curved_pair's
   // turning test, on any surface particle within kCornerZone of their
@@ -168,7 +171,7 @@ void build_smoothing(Simulation& sim) {
   std::vector<std::uint8_t> near_corner(p.n, 0);
   for (std::size_t a = 0; a < surface.size(); ++a) {
     const std::uint32_t i = surface[a];
-    const double radius = reach * p.spacing[i];
+    const double radius = spread_radius(i);
     auto& row = rows[i];
     // Neighbours within `widest` in x on either side, then by distance.
     std::size_t lo = a;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "solver/diagnostics/energy.hpp"
+#include "solver/physics/contact.hpp"
 #include "solver/run/runner.hpp"
 
 namespace gearsph {
@@ -89,6 +90,14 @@ nlohmann::json make_summary(const PreparedJob& job, const RunResult& result,
                                       : 0.0}};
   s["model"] = scene.description;
   s["method"] = job.job.at("method");
+  // What the contact's spread became where the job left it to the scene.
+  if (physics::contact_smoothing(sim)) {
+    auto& contact = s["method"]["contact"];
+    contact["smoothing_spacings"] = sim.contact.smoothing_spacings;
+    nlohmann::json scale = nlohmann::json::object();
+    for (const Body& b : sim.bodies) scale[b.name] = b.contact_spread_scale;
+    contact["spread_scale_by_body"] = scale;
+  }
   // Graded particles: the finest spacing beside the bulk's, which h_m is
   // taken at (each particle's h is h_over_dx times its own spacing).
   double finest = sim.discretization.dx;
