@@ -5,6 +5,7 @@
 // ratio.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "solver/core/simulation.hpp"
@@ -476,6 +477,24 @@ PeakPressure peak_contact_pressure(const GearLayout& L, const History& h,
   return peak;
 }
 
+// A static check answers for tooth 0 loaded alone. Where it carries less
+// than half the rack's load, the load went elsewhere (other rack teeth
+// meeting its neighbours, or none meeting its driving flank: a rack count of
+// one once put the rack tooth beside the other flank, and the check read
+// zero everywhere without a word): the run says so.
+void warn_of_an_unloaded_tooth0(nlohmann::json& a, const nlohmann::json& sc, const GearLayout& L) {
+  const double share = sc.at("load_carried_by_tooth0").get<double>();
+  if (share >= 0.5) return;
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "static check: tooth 0 carries %.0f %% of the rack load (%.4g N of %.4g N "
+                "tangential): its fillet numbers are not those of the single loaded pair the "
+                "check rates (the load went through other teeth, or had not reached tooth 0 "
+                "when the run ended)",
+                100.0 * share, share * L.load_N, L.load_N);
+  a["warnings"].push_back(text);
+}
+
 }  // namespace
 
 nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
@@ -502,6 +521,7 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
     }
     add_static_contact_pressure(sc, L, h);
     if (L.resolved.spacing > 0.0) add_resolved_contact_pressure(sc, L, final_state);
+    warn_of_an_unloaded_tooth0(a, sc, L);
     a["static_check"] = sc;
   }
 
