@@ -209,6 +209,31 @@ json kirsch_job(bool quick) {
             {"hole_radius_m", quick ? 0.002 : 0.004}}}};
 }
 
+// Kirsch off the default d/W: 0.1 (a small hole in a wide plate) and 0.5.
+json kirsch_hole_job(double d_over_w) {
+  const double width = 0.04;
+  return {{"name", "kirsch"},
+          {"scene",
+           {{"type", "plate_with_hole"},
+            {"width_m", width},
+            {"length_m", 3.0 * width},
+            {"hole_radius_m", 0.5 * d_over_w * width}}}};
+}
+
+// Lame off the default b/a = 2: a thin ring (1.5) and a thick one (4), the
+// ends of what the bore reading is claimed for (steel, 50 MPa).
+json lame_ring_job(double b_over_a) {
+  const double a = 0.02;
+  return {{"name", "lame"},
+          {"scene",
+           {{"type", "thick_cylinder"},
+            {"inner_radius_m", a},
+            {"outer_radius_m", b_over_a * a},
+            {"pressure_Pa", 5e7},
+            {"material", {{"E_Pa", 2.1e11}, {"nu", 0.3}, {"rho_kg_m3", 7850}}}}},
+          {"output", {{"frames", 0}}}};
+}
+
 json lame_job() {
   return {{"name", "lame"}, {"scene", {{"type", "thick_cylinder"}}}};
 }
@@ -344,6 +369,21 @@ std::vector<Case> cases(bool quick) {
   out.push_back({"lame/bore_hoop_stress", "10", "hoop stress at the bore [Pa]",
                  "Lame: p (b^2 + a^2) / (b^2 - a^2)", 0.02, lame_job(),
                  relative("bore_hoop_stress_Pa", "reference_bore_hoop_stress_Pa")});
+  for (const double d_over_w : {0.1, 0.5}) {
+    if (quick && d_over_w < 0.2) continue;  // 30 s: the full variant's
+    out.push_back(
+        {std::string("kirsch/peak_hoop_stress_d_over_w_") + (d_over_w < 0.2 ? "0.1" : "0.5"), "10",
+         "peak hoop stress at the hole [Pa]",
+         "Howland's finite-width plate (Heywood: Kt_net = 2 + (1 - d/W)^3)", 0.03,
+         kirsch_hole_job(d_over_w),
+         relative("peak_hoop_stress_Pa", "reference_peak_hoop_stress_Pa")});
+  }
+  for (const double b_over_a : {1.5, 4.0}) {
+    out.push_back({std::string("lame/bore_hoop_stress_b_over_a_") + (b_over_a < 2 ? "1.5" : "4"),
+                   "10", "hoop stress at the bore [Pa]", "Lame: p (b^2 + a^2) / (b^2 - a^2)", 0.02,
+                   lame_ring_job(b_over_a),
+                   relative("bore_hoop_stress_Pa", "reference_bore_hoop_stress_Pa")});
+  }
   out.push_back({"lame/bore_displacement", "10", "radial displacement of the bore [m]",
                  "Lame, plane strain: (1 + nu) p a^2 / (E (b^2 - a^2)) [(1 - 2 nu) a + b^2 / a]",
                  0.02, lame_job(),
