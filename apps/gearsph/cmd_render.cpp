@@ -52,7 +52,7 @@ void write_png(const std::string& path, const std::string& bytes) {
 
 constexpr const char* kResultsFileName = "results.h5";
 
-// --field, --frame, --zoom and --range.
+// --field, --frame, --zoom, --range and --particles.
 FrameImageRequest read_frame_request(Args& args) {
   FrameImageRequest request;
   request.field = args.option("field").value_or("von_mises");
@@ -69,6 +69,7 @@ FrameImageRequest read_frame_request(Args& args) {
     if (!(r[0] < r[1])) throw std::invalid_argument(usage + ", got '" + *range + "'");
     request.range = std::array<double, 2>{r[0], r[1]};
   }
+  request.particles = args.flag("particles");
   return request;
 }
 
@@ -106,14 +107,22 @@ int exit_status(FrameImageFault fault) {
 int render_one(const std::filesystem::path& dir, const FrameImageRequest& request,
                const std::string& out) {
   std::string png;
+  DrawnFieldStats stats;
   try {
-    png = draw_frame_png(dir, request);
+    png = draw_frame_png(dir, request, &stats);
   } catch (const FrameImageError& e) {
     std::fprintf(stderr, "gearsph render: %s\n", e.what());
     return exit_status(e.fault());
   }
   write_png(out, png);
   std::printf("wrote %s\n", out.c_str());
+  if (stats.counted > 0) {
+    std::printf(
+        "zig-zag indicator over the %zu particles drawn: %.3f drawn, %.3f the particles' own\n",
+        stats.counted, stats.drawn_zigzag, stats.particles_zigzag);
+    std::printf("largest value drawn %.6g, the particles' largest %.6g (SI)\n", stats.drawn_max,
+                stats.particles_max);
+  }
   return 0;
 }
 

@@ -7,11 +7,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "render/field_image.hpp"
+#include "render/mesh_image.hpp"
+#include "render/particle_mesh.hpp"
 #include "results/results_reader.hpp"
 
 namespace gearsph::cli {
@@ -282,7 +285,84 @@ std::vector<render::Polyline> moved_outlines(const results::ResultsFile& file,
   return lines;
 }
 
-std::string draw(const std::filesystem::path& run_dir, const FrameImageRequest& request) {
+// Bands of a field drawn as contours: about one per 8 % of its range.
+constexpr int kContourBands = 12;
+
+// The field as contours inside the outlines (particle_mesh.hpp): the
+// particles triangulated within their bodies, the field smoothed for the
+// drawing, the same frame, colour bar and outlines as the particle figure.
+// The particles the window shows (all without a zoom).
+std::vector<unsigned char> in_window(const FieldImage& f) {
+  std::vector<unsigned char> in(f.x.size(), 1);
+  if (!f.zoom) return in;
+  for (std::size_t i = 0; i < f.x.size(); ++i) {
+    in[i] = f.x[i] >= f.zoom->x0 && f.x[i] <= f.zoom->x1 && f.y[i] >= f.zoom->y0 &&
+            f.y[i] <= f.zoom->y1;
+  }
+  return in;
+}
+
+std::string draw_contours(const FieldImage& f, const results::ResultsFile& file,
+                          const results::InitialState& initial, DrawnFieldStats* stats) {
+  // Triangulated in the reference configuration, against the outlines as
+  // stored; drawn where the particles are now.
+  std::vector<double> x0, y0;
+  for (std::size_t i = 0; i < f.x.size(); ++i) {
+    x0.push_back(initial.position[3 * i]);
+    y0.push_back(initial.position[3 * i + 1]);
+  }
+  std::vector<render::Polyline> reference;
+  std::vector<int> outline_body;
+  for (const auto& o : file.outlines()) {
+    render::Polyline line;
+    line.closed = o.closed;
+    for (const auto& p : o.points) {
+      line.x.push_back(p[0]);
+      line.y.push_back(p[1]);
+    }
+    reference.push_back(std::move(line));
+    outline_body.push_back(o.body);
+  }
+  const render::ParticleMesh mesh =
+      render::particle_mesh(x0, y0, f.body, reference, outline_body, 3.0 * f.particle_size_m);
+  render::MeshImage m;
+  m.width = f.width;
+  m.height = f.height;
+  m.x = f.x;
+  m.y = f.y;
+  m.triangles = mesh.triangles;
+  m.value = render::smoothed_for_drawing(f.x, f.y, f.value, mesh);
+  if (stats) {
+    const std::vector<unsigned char> in = in_window(f);
+    stats->particles_zigzag = render::zigzag_indicator(f.x, f.y, f.value, mesh, &in);
+    stats->drawn_zigzag = render::zigzag_indicator(f.x, f.y, m.value, mesh, &in);
+    stats->counted = static_cast<std::size_t>(std::count(in.begin(), in.end(), 1));
+    stats->particles_max = stats->drawn_max = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < in.size(); ++i) {
+      if (!in[i]) continue;
+      if (std::isfinite(f.value[i]))
+        stats->particles_max = std::max(stats->particles_max, f.value[i]);
+      if (std::isfinite(m.value[i])) stats->drawn_max = std::max(stats->drawn_max, m.value[i]);
+    }
+  }
+  m.field_label = f.field_label;
+  m.unit_label = f.unit_label;
+  m.unit_scale = f.unit_scale;
+  m.vmin = f.vmin;
+  m.vmax = f.vmax;
+  m.diverging = f.colouring == FieldImage::Colouring::Diverging;
+  m.bands = kContourBands;
+  m.outlines = f.outlines;
+  m.title = f.title;
+  m.time_s = f.time_s;
+  m.zoom = f.zoom;
+  m.supersample = f.supersample;
+  const auto png = render::render_mesh_png(m);
+  return std::string(png.begin(), png.end());
+}
+
+std::string draw(const std::filesystem::path& run_dir, const FrameImageRequest& request,
+                 DrawnFieldStats* stats) {
   const FieldChoice& choice = checked_choice(request);
   const results::ResultsFile file = open_results(run_dir);
   const std::size_t index = checked_frame_index(file, request.frame);
@@ -303,15 +383,20 @@ std::string draw(const std::filesystem::path& run_dir, const FrameImageRequest& 
     f.zoom = render::Window{z[0], z[1], z[2], z[3]};
   }
   f.outlines = moved_outlines(file, frame, initial, bodies);
+  if (!request.particles && choice.colouring != FieldImage::Colouring::Categorical) {
+    return draw_contours(f, file, initial, stats);
+  }
   const auto png = render::render_field_png(f);
   return std::string(png.begin(), png.end());
 }
 
 }  // namespace
 
-std::string draw_frame_png(const std::filesystem::path& run_dir, const FrameImageRequest& request) {
+std::string draw_frame_png(const std::filesystem::path& run_dir, const FrameImageRequest& request,
+                           DrawnFieldStats* stats) {
+  if (stats) *stats = DrawnFieldStats{};
   try {
-    return draw(run_dir, request);
+    return draw(run_dir, request, stats);
   } catch (const FrameImageError&) {
     throw;
   } catch (const std::exception& e) {

@@ -20,6 +20,10 @@ struct FrameImageRequest {
   // The colour scale, lo < hi in the field's SI unit; values beyond take the
   // end colours. Default: from the frame's values.
   std::optional<std::array<double, 2>> range;
+  // The particles as discs of their own value; by default a field is drawn
+  // as contours inside the outlines, smoothed for the drawing
+  // (render/particle_mesh.hpp).
+  bool particles = false;
 };
 
 // Why a frame was not drawn.
@@ -42,8 +46,20 @@ class FrameImageError : public std::runtime_error {
   FrameImageFault fault_;
 };
 
-// The PNG of one frame of run_dir/results.h5. Throws FrameImageError, and
-// only that. Defined in builds with the results and render layers.
-std::string draw_frame_png(const std::filesystem::path& run_dir, const FrameImageRequest& request);
+// How much the drawn field zig-zags from particle to particle, against the
+// particles' own values (render/particle_mesh.hpp, zigzag_indicator), over
+// the particles in the window drawn; a drawing of the particles or of
+// categories has none (counted 0).
+struct DrawnFieldStats {
+  double particles_zigzag = 0.0, drawn_zigzag = 0.0;
+  double particles_max = 0.0, drawn_max = 0.0;  // the largest value in the window
+  std::size_t counted = 0;
+};
+
+// The PNG of one frame of run_dir/results.h5 (and, when `stats` is given,
+// the drawn field's zig-zag). Throws FrameImageError, and only that.
+// Defined in builds with the results and render layers.
+std::string draw_frame_png(const std::filesystem::path& run_dir, const FrameImageRequest& request,
+                           DrawnFieldStats* stats = nullptr);
 
 }  // namespace gearsph::cli

@@ -60,9 +60,11 @@ usage:
       models unless --rim-depth-mm or --teeth say otherwise; --compare takes the load and
       the structure from a finished SPH run and writes fe_comparison.json; writes DIR/fe_summary.json, fe_fillet_curves.csv/.json
       and PNG images; --keep-model-files keeps the .geo/.inp/.frd in DIR/fe_model
-  gearsph render RUN_DIR|results.h5 --out FILE.png [--field von_mises] [--frame K] [--zoom x0,y0,x1,y1] [--range lo,hi]
+  gearsph render RUN_DIR|results.h5 --out FILE.png [--field von_mises] [--frame K] [--zoom x0,y0,x1,y1] [--range lo,hi] [--particles]
       a frame of a run as the service draws it (frame -1: the last); --range fixes the
-      colour scale (SI); --frames all --out DIR writes every frame
+      colour scale (SI); --frames all --out DIR writes every frame; a field is drawn as
+      contours inside the outlines, smoothed for the drawing; --particles draws each
+      particle as a disc of its own value
   gearsph plot RUN_DIR --columns A,B --out FILE.png [--title T] [--ylabel L] [--scale S]
       history.csv columns against time
   gearsph serve [options]
