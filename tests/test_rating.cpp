@@ -14,6 +14,7 @@
 #include "solver/gear/gear_rating.hpp"
 #include "solver/gear/iso6336_life.hpp"
 #include "solver/gear/iso6336_rating.hpp"
+#include "solver/job/job.hpp"
 
 namespace gearsph::gear::iso6336 {
 namespace {
@@ -218,6 +219,30 @@ TEST(Rating, RefusalsNameTheField) {
   doc = paper_rack_pair(5000);
   doc["gears"][0]["material"].erase("iso6336_5");
   EXPECT_EQ(pointer_of(doc), "/gears/0/material/iso6336_5");
+}
+
+// A job's materials may carry strength (the job schema's material): the
+// paper's nodular iron by its class line is accepted; a hardness off the
+// line is refused at its field before any run.
+TEST(Rating, JobMaterialsWithStrengthAreChecked) {
+  json job = {{"name", "strength"},
+              {"scene",
+               {{"type", "rack_pinion"},
+                {"material",
+                 {{"E_Pa", 1.73e11},
+                  {"nu", 0.3},
+                  {"rho_kg_m3", 7800},
+                  {"iso6336_5", {{"class", "GJS"}, {"quality", "MQ"}, {"hardness_HB", 250}}},
+                  {"yield_Pa", 4.2e8}}}}}};
+  EXPECT_NO_THROW(validate_job(job));
+  job["scene"]["material"]["iso6336_5"]["hardness_HB"] = 120;
+  try {
+    validate_job(job);
+    ADD_FAILURE() << "a hardness off the GJS line was accepted";
+  } catch (const InvalidJob& e) {
+    ASSERT_EQ(e.issues.size(), 1u);
+    EXPECT_EQ(e.issues[0].pointer, "/scene/material/iso6336_5/hardness_HB");
+  }
 }
 
 }  // namespace
