@@ -14,6 +14,7 @@
 #include "solver/gear/gear_rating.hpp"
 #include "solver/gear/iso6336_life.hpp"
 #include "solver/gear/iso6336_rating.hpp"
+#include "solver/gear/iso6336_simulated.hpp"
 #include "solver/job/job.hpp"
 
 namespace gearsph::gear::iso6336 {
@@ -243,6 +244,59 @@ TEST(Rating, JobMaterialsWithStrengthAreChecked) {
     ASSERT_EQ(e.issues.size(), 1u);
     EXPECT_EQ(e.issues[0].pointer, "/scene/material/iso6336_5/hardness_HB");
   }
+}
+
+// analysis.rating scales the simulated stresses to all of F_t on the one
+// tooth and applies method B's factors: a static check whose tooth 0
+// carried half of F_t with half of method B's fillet stress (and the Hertz
+// pressure of that half) is rated exactly as method B rates the pair.
+TEST(Rating, SimulatedStressesUnderMethodBFactors) {
+  geometry::PinionSpec s;
+  s.teeth = 12;
+  s.tool.module_m = 4e-3;
+  s.tool.pressure_angle_rad = 20.0 * kPi / 180.0;
+  const geometry::PinionGeometry pinion(s);
+  const json iron = paper_rack_pair(5000)["gears"][0]["material"];
+  const json doc =
+      rack_pinion_rating_document(pinion, 0.02, iron, iron, 5000.0, -15.0, {{"required_S_F", 1.5}});
+  const json b = rate_document(doc);
+  const json& f = b["factors"];
+  const double K_H = f["K_A"].get<double>() * f["K_v"].get<double>() * f["K_Hbeta"].get<double>() *
+                     f["K_Halpha"].get<double>();
+  const double a = 20.0 * kPi / 180.0;
+  const json sc = {{"contact_point", "hpstc"},
+                   {"tooth0_force_N", 2500.0 / std::cos(a)},
+                   {"fillet_tension_peak_Pa", 0.5 * b["bending"]["sigma_F0_Pa"][0].get<double>()},
+                   {"iso_sigma_F0_Pa", 0.5 * b["bending"]["sigma_F0_Pa"][0].get<double>()},
+                   {"hertz_peak_pressure_Pa",
+                    b["pitting"]["sigma_H_Pa"][0].get<double>() / std::sqrt(2.0 * K_H)}};
+  const json r = rating_from_static_check(doc, sc);
+  EXPECT_NEAR(r["tooth0_share"].get<double>(), 0.5, 1e-12);
+  EXPECT_NEAR(r["simulated"]["S_F"].get<double>() / b["bending"]["S_F"][0].get<double>(), 1.0,
+              1e-9);
+  EXPECT_NEAR(r["simulated"]["S_H_hertz"].get<double>() / b["pitting"]["S_H"][0].get<double>(), 1.0,
+              1e-9);
+  EXPECT_EQ(r["required_S_F"], 1.5);
+  EXPECT_EQ(r["governing"]["mode"], "pitting of the pinion");  // S_H ~ 0.44 at 5 kN in 250 HB iron
+}
+
+// A held static check has no speed for K_v: the job names the field to give.
+TEST(Rating, AHeldStaticCheckNeedsTheServiceSpeed) {
+  const json iron = paper_rack_pair(5000)["gears"][0]["material"];
+  json job = {{"scene",
+               {{"type", "rack_pinion"},
+                {"quasi_static", true},
+                {"material", iron},
+                {"pinion", {{"omega_rad_s", 0.0}}},
+                {"rack", {{"velocity_m_s", 0.0}, {"load_N", 5000.0}}}}}};
+  try {
+    prepare_job(job, 1);
+    ADD_FAILURE() << "a held pinion was rated without a speed";
+  } catch (const InvalidJob& e) {
+    EXPECT_EQ(e.issues.at(0).pointer, "/scene/rating/speed_rpm");
+  }
+  job["scene"]["rating"] = {{"speed_rpm", 143.2}};
+  EXPECT_NO_THROW(prepare_job(job, 1));
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "solver/core/simulation.hpp"
 #include "solver/diagnostics/hertz_fit.hpp"
+#include "solver/gear/iso6336_simulated.hpp"
 #include "solver/scene/rack_pinion.hpp"
 
 namespace gearsph::scenes {
@@ -503,6 +504,9 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
     add_static_contact_pressure(sc, L, h);
     if (L.resolved.spacing > 0.0) add_resolved_contact_pressure(sc, L, final_state);
     a["static_check"] = sc;
+    if (!L.rating_document.is_null()) {
+      a["rating"] = gear::iso6336::rating_from_static_check(L.rating_document, sc);
+    }
   }
 
   const PeakPressure p = peak_contact_pressure(L, h, t);
