@@ -6,7 +6,12 @@
 // their JSON pointers.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <sstream>
@@ -297,6 +302,34 @@ TEST(Rating, AHeldStaticCheckNeedsTheServiceSpeed) {
   }
   job["scene"]["rating"] = {{"speed_rpm", 143.2}};
   EXPECT_NO_THROW(prepare_job(job, 1));
+}
+
+// `gearsph rate`: the verdict as JSON on stdout, exit 0; a refused document
+// on stderr with the field's pointer, exit 2.
+TEST(Rating, CommandLineRatesAndRefuses) {
+  auto run = [](const std::string& args) {
+    const std::string cmd = std::string(GEARSPH_BINARY) + " rate " + args + " 2>&1";
+    std::string out;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return std::pair<std::string, int>{"", -1};
+    char buf[4096];
+    for (std::size_t got; (got = std::fread(buf, 1, sizeof buf, pipe)) > 0;) out.append(buf, got);
+    return std::pair<std::string, int>{out, WEXITSTATUS(pclose(pipe))};
+  };
+  const std::string example =
+      std::string(GEARSPH_SOURCE_DIR) + "/schemas/examples/rating-iso-tr-6336-30-1.json";
+  const auto [verdict, ok] = run(example);
+  ASSERT_EQ(ok, 0) << verdict;
+  EXPECT_EQ(json::parse(verdict), rate_document(example_1()));
+  json bad = example_1();
+  bad["gears"][1]["material"]["iso6336_5"]["hardness_HV"] = 500;
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("rating_bad_" + std::to_string(getpid()) + ".json");
+  { std::ofstream(file) << bad.dump(); }
+  const auto [refusal, status] = run(file.string());
+  std::filesystem::remove(file);
+  EXPECT_EQ(status, 2);
+  EXPECT_NE(refusal.find("/gears/1/material/iso6336_5/hardness_HV"), std::string::npos) << refusal;
 }
 
 }  // namespace

@@ -105,7 +105,13 @@ nlohmann::json rating_from_static_check(const json& document, const json& sc) {
     sim["S_yield"] = yield / (sc.at("fillet_tension_peak_Pa").get<double>() * static_F / ft0);
   }
   const bool bending_governs = sim["S_F"].get<double>() / req_F < S_H_sim / req_H;
-  return {{"load_point", sc.at("contact_point")},
+  return {{"note",
+           "S_F: the fillet's recovered tension peak in place of F_t/(b m_n) Y_F Y_S, method B's "
+           "at its outer point of single contact and at the check's load point; S_H: Hertz on "
+           "tooth 0's simulated force at the load point (resolved: the particles' own pressure), "
+           "method B's at the inner point of single contact (Z_B): compare S_H at contact_point "
+           "lpstc"},
+          {"load_point", sc.at("contact_point")},
           {"tooth0_share", ft0 / F_t},
           {"simulated", sim},
           {"method_B",
