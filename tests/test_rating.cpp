@@ -302,6 +302,14 @@ TEST(Rating, AHeldStaticCheckNeedsTheServiceSpeed) {
   }
   job["scene"]["rating"] = {{"speed_rpm", 143.2}};
   EXPECT_NO_THROW(prepare_job(job, 1));
+  // Without strength the rating block would rate nothing: refused, not ignored.
+  job["scene"]["material"] = {{"E_Pa", 1.73e11}, {"nu", 0.3}, {"rho_kg_m3", 7800}};
+  try {
+    prepare_job(job, 1);
+    ADD_FAILURE() << "a rating block without strength was accepted";
+  } catch (const InvalidJob& e) {
+    EXPECT_EQ(e.issues.at(0).pointer, "/scene/rating");
+  }
 }
 
 // `gearsph rate`: the verdict as JSON on stdout, exit 0; a refused document

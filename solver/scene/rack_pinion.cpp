@@ -814,11 +814,19 @@ nlohmann::json rating_document_of(const nlohmann::json& s, const GearLayout& L,
   const nlohmann::json& pm =
       s.contains("pinion_material") ? s.at("pinion_material") : s.at("material");
   const nlohmann::json& rm = s.contains("rack_material") ? s.at("rack_material") : s.at("material");
-  if (!L.quasi_static) return nullptr;
   const nlohmann::json options = s.value("rating", nlohmann::json::object());
+  // A rating block that would rate nothing is refused rather than ignored.
+  const char* kNothing =
+      "rates a quasi-static check with a rack load whose materials carry strength "
+      "(iso6336_5): this job has none";
+  if (!L.quasi_static) {
+    if (s.contains("rating")) throw JobError("/scene/rating", kNothing);
+    return nullptr;
+  }
   try {
     nlohmann::json doc = gear::iso6336::rack_pinion_rating_document(pinion, L.face_width_m, pm, rm,
                                                                     L.load_N, L.omega, options);
+    if (doc.is_null() && s.contains("rating")) throw JobError("/scene/rating", kNothing);
     if (!doc.is_null()) gear::iso6336::rate_document(doc);
     return doc;
   } catch (const gear::iso6336::InvalidRating& e) {
