@@ -1,6 +1,6 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
-import { level, verdictRows } from "../../web/js/verdict-data.js";
+import { level, safeties, verdictRows } from "../../web/js/verdict-data.js";
 
 // The 5 kN static check of the paper's pinion in 250 HB nodular iron
 // (docs/rating.md), as analysis.rating reports it.
@@ -29,4 +29,9 @@ test("an unrated run has no verdict; levels at their bounds", () => {
   assert.equal(level(1.0), "amber");
   assert.equal(level(1.1), "green");
   assert.equal(level(NaN), "red");
+});
+
+test("the compare view's safeties: the simulated S_F and S_H, null when unrated", () => {
+  assert.deepEqual(safeties(rated), { S_F: 1.411, S_H: 0.684 });
+  assert.equal(safeties({ analysis: {} }), null);
 });

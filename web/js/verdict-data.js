@@ -36,3 +36,10 @@ export function verdictRows(summary) {
 function fixed(v) {
   return Number.isFinite(v) ? v.toFixed(3) : "–";
 }
+
+// The simulated safeties of a rated run, for the compare view; null if none.
+export function safeties(summary) {
+  const sim = summary?.analysis?.rating?.simulated;
+  if (!sim) return null;
+  return { S_F: sim.S_F, S_H: sim.S_H_resolved ?? sim.S_H_hertz };
+}
