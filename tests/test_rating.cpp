@@ -80,7 +80,7 @@ TEST(Rating, IsoTr6336_30Example1WithinHalfAPercent) {
       {"c_gamma_alpha", f["c_gamma_alpha_N_mm_um"], 17.46485},
       {"c_gamma_beta", f["c_gamma_beta_N_mm_um"], 14.84512},
       {"K_v", f["K_v"], 1.003},
-      {"K_Hbeta (given)", f["K_Hbeta"], 1.16},
+      {"K_Hbeta", f["K_Hbeta"], 1.16},
       {"K_Fbeta", f["K_Fbeta"], 1.12803},
       {"K_Halpha", f["K_Halpha"], 1.0},
       {"K_Falpha", f["K_Falpha"], 1.0},
