@@ -51,9 +51,11 @@ export function jobForm({ onEdit }) {
   }
 
   function fill(job) {
-    for (const [pointer, { input, def }] of inputs) {
+    for (const [pointer, { input, def, spec }] of inputs) {
       let v = getPointer(job, pointer);
-      if (v === undefined && def !== undefined && typeof def !== "object") v = def;
+      // An optional block's fields (the material's strength) start empty:
+      // a default alone must not make the job carry the block.
+      if (v === undefined && def !== undefined && typeof def !== "object" && !spec.optional) v = def;
       input.value = formText(v);
     }
   }
