@@ -223,6 +223,12 @@ TEST(Rating, RefusalsNameTheField) {
   doc["gears"][0]["teeth"] = "twelve";
   EXPECT_EQ(pointer_of(doc), "/gears/0/teeth");
   doc = paper_rack_pair(5000);
+  doc["gears"][0]["rim_thickness_mm"] = 2;  // 9 mm deep teeth
+  EXPECT_EQ(pointer_of(doc), "/gears/0/rim_thickness_mm");
+  json wide = example_1();
+  wide["pair"]["center_distance_mm"] = 530;
+  EXPECT_EQ(pointer_of(wide), "/pair/center_distance_mm");
+  doc = paper_rack_pair(5000);
   doc["gears"][0]["material"].erase("iso6336_5");
   EXPECT_EQ(pointer_of(doc), "/gears/0/material/iso6336_5");
 }

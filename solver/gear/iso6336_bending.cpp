@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace gearsph::gear::iso6336 {
@@ -105,6 +106,7 @@ double helix_factor(const PairGeometry& g) {
 double rim_factor(double rim_m, double h_t) {
   if (rim_m <= 0.0) return 1.0;
   const double r = rim_m / h_t;
+  if (r < 0.5) return std::numeric_limits<double>::quiet_NaN();  // outside ISO's range
   return r >= 1.2 ? 1.0 : 1.6 * std::log(2.242 / r);
 }
 

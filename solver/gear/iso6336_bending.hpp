@@ -31,7 +31,8 @@ double outer_single_contact_diameter(const PairGeometry& g, int k);
 // and beta capped at 1 and 30 deg.
 double helix_factor(const PairGeometry& g);
 // Rim thickness factor, clause 7.4 (external gears): 1 for s_R/h_t >= 1.2,
-// 1.6 ln(2.242 h_t/s_R) down to s_R/h_t = 0.5; rim_m <= 0: a solid blank.
+// 1.6 ln(2.242 h_t/s_R) down to s_R/h_t = 0.5 (NaN below: outside ISO's
+// range); rim_m <= 0: a solid blank.
 double rim_factor(double rim_m, double tooth_depth_m);
 // Deep tooth factor, clause 7.5: for eps_alpha_n above 2.05 on gears of
 // accuracy grade 4 or better.

@@ -123,9 +123,11 @@ PairGeometry pair_geometry(const PairSpec& s) {
   g.p_bt = kPi * s.m_n * std::cos(g.alpha_t) / std::cos(s.beta);
   path_of_contact(g);
   if (!(g.eps_alpha > 1.0)) {
-    throw InvalidRating("/gears", "give a transverse contact ratio above 1 (it is " +
-                                      std::to_string(g.eps_alpha) +
-                                      "): the teeth would lose contact between pairs");
+    // Too wide a centre distance is the usual cause when one is given.
+    const bool by_centre = s.a_w > 0.0 && !s.rack;
+    throw InvalidRating(by_centre ? "/pair/center_distance_mm" : "/gears",
+                        "gives a transverse contact ratio of " + std::to_string(g.eps_alpha) +
+                            ", not above 1: the teeth would lose contact between pairs");
   }
   g.eps_beta = s.b * std::sin(s.beta) / (kPi * s.m_n);  // ISO 21771, eq. (86)
   g.eps_gamma = g.eps_alpha + g.eps_beta;

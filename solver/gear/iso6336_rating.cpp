@@ -131,6 +131,11 @@ ModeResult bending(const RatingInput& in, const Mesh& m, json& factors, json& ou
     t.d_en = outer_single_contact_diameter(g, k);
     const IsoToothForm f = virtual_tooth_form(t);
     const double Y_B = rim_factor(in.rim_m[k], g.h[k]);
+    if (std::isnan(Y_B)) {
+      throw InvalidRating("/gears/" + std::to_string(k) + "/rim_thickness_mm",
+                          "is below half the tooth depth, where ISO 6336-3's rim factor ends "
+                          "(a rim that thin may crack through the rim)");
+    }
     const double s0 = in.F_t_N / (s.b * s.m_n) * f.Y_F * f.Y_S * Y_beta * Y_B * Y_DT;
     const double Y_d = notch_sensitivity_factor(in.mat[k], f.s_Fn / (2.0 * f.rho_F));
     const double Y_R = surface_factor(in.mat[k], in.root_Rz_um[k]);
