@@ -11,6 +11,7 @@
 #include "server/problem.hpp"
 #include "server/routes.hpp"
 #include "server/routes_preview.hpp"
+#include "server/routes_rating.hpp"
 #include "server/static_files.hpp"
 
 namespace gearsph::server {
@@ -51,6 +52,7 @@ const std::vector<Route>& route_table() {
       {verb::post, "/studies", routes::create_study, slow},
       {verb::get, "/studies/{id}", routes::study, slow},  // reads every job's summary
       {verb::post, "/preview", routes::preview, slow},    // builds the scene
+      {verb::post, "/rating", routes::rating},            // ISO 6336, microseconds
       {verb::get, "/login", routes::login_state},
       {verb::post, "/login", routes::login},  // checks the token itself
       {verb::delete_, "/login", routes::logout},

@@ -126,6 +126,8 @@ TEST(Jobs, ExamplesAreValidAndBuild) {
   const std::filesystem::path dir = std::filesystem::path(GEARSPH_SOURCE_DIR) / "schemas/examples";
   int count = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    // Rating documents have their own schema (test_rating.cpp).
+    if (entry.path().filename().string().rfind("rating-", 0) == 0) continue;
     std::ifstream in(entry.path());
     std::stringstream text;
     text << in.rdbuf();

@@ -50,6 +50,9 @@ usage:
       and gear root bending (kernel, spacing); CSV + PNG per case
   gearsph schema
       print the job schema (JSON Schema draft-07)
+  gearsph rate RATING.json [--out FILE]
+      ISO 6336 rating of a gear pair (schemas/rating.schema.json, docs/rating.md):
+      stresses, safety factors per gear, every factor, static safety and life
   gearsph geometry JOB.json --out DIR
       the scene's outlines and particles as SVG and CSV, without running it
   gearsph fe JOB.json --out DIR [--fillet-sizes-mm 0.2,0.1] [--threads N] [--rim-depth-mm D] [--teeth 3|all] [--compare RUN_DIR] [--keep-model-files] [--no-images] [--timeout-s S] [--quiet]
@@ -147,6 +150,7 @@ bool asks_for_help(int argc, char** argv) {
 
 namespace gearsph::cli {
 int cmd_study(Args& args);             // cmd_study.cpp
+int cmd_rate(Args& args);              // cmd_rate.cpp
 int cmd_bench(int argc, char** argv);  // cmd_bench.cpp: `bench` and `bench pareto`
 #ifdef GEARSPH_WITH_FE
 int cmd_fe(Args& args);  // cmd_fe.cpp
@@ -242,6 +246,7 @@ int main(int argc, char** argv) {
     if (cmd == "study") return gearsph::cli::cmd_study(args);
     if (cmd == "bench") return gearsph::cli::cmd_bench(argc, argv);
     if (cmd == "geometry") return gearsph::cli::cmd_geometry(args);
+    if (cmd == "rate") return gearsph::cli::cmd_rate(args);
 #ifdef GEARSPH_WITH_FE
     if (cmd == "fe") return gearsph::cli::cmd_fe(args);
 #else

@@ -6,15 +6,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "solver/gear/iso6336_bending.hpp"
+#include "solver/gear/iso6336_factors.hpp"
+
 namespace gearsph::gear {
 
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-double involute(double a) {
-  return std::tan(a) - a;
-}
 
 }  // namespace
 
@@ -72,39 +71,17 @@ double lewis_form_factor(int teeth) {
 }
 
 IsoToothForm iso_tooth_form(const geometry::PinionGeometry& g, double load_radius) {
+  // A spur pinion is its own virtual gear (ISO 6336-3:2006, clause 6.2).
   const geometry::BasicRack& tool = g.spec().tool;
-  const double m = tool.module_m, alpha = tool.pressure_angle_rad;
-  const double x = g.spec().profile_shift;
-  const int z = g.teeth();
-  const double h_fp = tool.dedendum() / m, rho_fp = tool.root_radius() / m;
-  // ISO 6336-3:2006, eqs. (17)-(22) in module units (no protuberance).
-  const double E =
-      kPi / 4.0 - h_fp * std::tan(alpha) - (1.0 - std::sin(alpha)) * rho_fp / std::cos(alpha);
-  const double G = rho_fp - h_fp + x;
-  const double H = 2.0 / z * (kPi / 2.0 - E) - kPi / 3.0;
-  double theta = kPi / 6.0;
-  for (int it = 0; it < 50; ++it) theta = 2.0 * G / z * std::tan(theta) - H;
-  IsoToothForm f;
-  f.theta = theta;
-  f.s_Fn = m * (z * std::sin(kPi / 3.0 - theta) + std::sqrt(3.0) * (G / std::cos(theta) - rho_fp));
-  f.rho_F =
-      m * (rho_fp + 2.0 * G * G / (std::cos(theta) * (z * std::pow(std::cos(theta), 2) - 2.0 * G)));
-  // Load at radius r_e on the involute: pressure angle alpha_en at r_e, half
-  // tooth angle gamma_e there, load angle alpha_Fen = alpha_en - gamma_e.
-  const double rb = g.base_radius();
-  f.load_radius = load_radius;
-  const double alpha_en = std::acos(rb / load_radius);
-  const double gamma_e =
-      (kPi / 2.0 + 2.0 * x * std::tan(alpha)) / z + involute(alpha) - involute(alpha_en);
-  f.alpha_Fen = alpha_en - gamma_e;
-  const double d_en = 2.0 * load_radius / m;
-  f.h_Fe = 0.5 * m *
-           ((std::cos(gamma_e) - std::sin(gamma_e) * std::tan(f.alpha_Fen)) * d_en -
-            z * std::cos(kPi / 3.0 - theta) - G / std::cos(theta) + rho_fp);
-  f.Y_F = (6.0 * f.h_Fe / m * std::cos(f.alpha_Fen)) / (std::pow(f.s_Fn / m, 2) * std::cos(alpha));
-  const double L = f.s_Fn / f.h_Fe, qs = f.s_Fn / (2.0 * f.rho_F);
-  f.Y_S = (1.2 + 0.13 * L) * std::pow(qs, 1.0 / (1.21 + 2.3 / L));
-  return f;
+  iso6336::ToothFormInput in;
+  in.m_n = tool.module_m;
+  in.alpha_n = tool.pressure_angle_rad;
+  in.z_n = g.teeth();
+  in.x = g.spec().profile_shift;
+  in.tool.h_fP = tool.dedendum() / tool.module_m;
+  in.tool.rho_fP = tool.root_radius() / tool.module_m;
+  in.d_en = 2.0 * load_radius;
+  return iso6336::virtual_tooth_form(in);
 }
 
 ThirtyDegreePoints thirty_degree_points(const geometry::PinionGeometry& g) {
@@ -133,18 +110,14 @@ ThirtyDegreePoints thirty_degree_points(const geometry::PinionGeometry& g) {
 double iso_single_pair_stiffness(const geometry::PinionGeometry& g, double E_pinion_Pa,
                                  double E_rack_Pa) {
   const geometry::BasicRack& tool = g.spec().tool;
-  const double z = g.teeth(), x = g.spec().profile_shift;
-  // q' [mm um/N], ISO 6336-1 eq. (69) with the rack's terms (1/z_n2 = 0, x_2 = 0).
-  const double q = 0.04723 + 0.15551 / z - 0.00635 * x - 0.11654 * x / z + 0.00529 * x * x;
-  const double c_th = 1.0 / q;  // N/(mm um)
-  constexpr double kCM = kIsoMeasuredOverTheoretical, kCR = 1.0;
-  const double h_fp = tool.dedendum_coef;
-  const double alpha_deg = tool.pressure_angle_rad * 180.0 / kPi;
-  const double c_b = (1.0 + 0.5 * (1.2 - h_fp)) * (1.0 - 0.02 * (20.0 - alpha_deg));  // eq. (72)
+  // The rack's terms vanish: 1/z_n2 = 0, x_2 = 0.
+  const double c_th =
+      iso6336::theoretical_single_stiffness(g.teeth(), 0.0, g.spec().profile_shift, 0.0);
+  constexpr double kCR = 1.0;  // solid blank
+  const double c_b = iso6336::basic_rack_factor(tool.dedendum_coef, tool.pressure_angle_rad);
   const double e_pair = 2.0 * E_pinion_Pa * E_rack_Pa / (E_pinion_Pa + E_rack_Pa);
-  constexpr double kESteel = 206e9;
   // 1 N/(mm um) = 1e9 N/m per metre of face width.
-  return c_th * kCM * kCR * c_b * (e_pair / kESteel) * 1e9;
+  return c_th * kIsoMeasuredOverTheoretical * kCR * c_b * (e_pair / iso6336::kSteelModulusPa) * 1e9;
 }
 
 double iso_sigma_H0(double ft_N, double d1_m, double b_m, double alpha_rad, double e_star_Pa) {

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "solver/gear/iso6336_error.hpp"
+#include "solver/gear/iso6336_materials.hpp"
 #include "solver/integrate/integrator.hpp"
 #include "solver/job/json_schema.hpp"
 #include "solver/physics/contact.hpp"
@@ -145,6 +147,32 @@ void check_fe_request(const nlohmann::json& job) {
   }
 }
 
+// Materials with strength (ISO 6336-5 class, limits, yield) are resolved
+// here, so that a class without a built-in line or a hardness off its line
+// is refused before a run, at its field, like any other bad value.
+void check_material_strength(const nlohmann::json& node, const std::string& pointer,
+                             std::vector<JobIssue>& issues) {
+  if (node.is_array()) {
+    for (std::size_t k = 0; k < node.size(); ++k) {
+      check_material_strength(node[k], pointer + "/" + std::to_string(k), issues);
+    }
+    return;
+  }
+  if (!node.is_object()) return;
+  if (node.contains("E_Pa") && gear::iso6336::has_strength(node)) {
+    try {
+      gear::iso6336::read_gear_material(node, pointer);
+    } catch (const gear::iso6336::InvalidRating& e) {
+      for (const auto& i : e.issues) issues.push_back({i.pointer, i.message});
+    }
+    return;
+  }
+  for (auto it = node.begin(); it != node.end(); ++it) {
+    check_material_strength(*it, pointer + "/" + jsonschema::escape_pointer_token(it.key()),
+                            issues);
+  }
+}
+
 Scene build_scene(const nlohmann::json& job, const Discretization& disc) {
   const nlohmann::json& s = job.at("scene");
   const std::string type = s.at("type").get<std::string>();
@@ -197,6 +225,9 @@ nlohmann::json validate_job(const nlohmann::json& job) {
   }
   nlohmann::json full = validator().apply_defaults(job);
   check_fe_request(full);
+  std::vector<JobIssue> strength;
+  if (full.contains("scene")) check_material_strength(full["scene"], "/scene", strength);
+  if (!strength.empty()) throw InvalidJob(std::move(strength));
   return full;
 }
 

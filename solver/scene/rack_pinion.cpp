@@ -10,6 +10,9 @@
 #include <numbers>
 #include <sstream>
 
+#include "solver/gear/iso6336_error.hpp"
+#include "solver/gear/iso6336_rating.hpp"
+#include "solver/gear/iso6336_simulated.hpp"
 #include "solver/geometry/gear_profile.hpp"
 #include "solver/geometry/lattice_fill.hpp"
 #include "solver/geometry/mesh_placement.hpp"
@@ -795,6 +798,35 @@ nlohmann::json describe_mesh(const Simulation& sim, const nlohmann::json& s, con
                                           : nlohmann::json(false)}};
 }
 
+// A static check of a pair whose materials carry strength is rated
+// (analysis.rating); a rating that cannot be had is refused before the run.
+nlohmann::json rating_document_of(const nlohmann::json& s, const GearLayout& L,
+                                  const geometry::PinionGeometry& pinion) {
+  const nlohmann::json& pm =
+      s.contains("pinion_material") ? s.at("pinion_material") : s.at("material");
+  const nlohmann::json& rm = s.contains("rack_material") ? s.at("rack_material") : s.at("material");
+  const nlohmann::json options = s.value("rating", nlohmann::json::object());
+  // A rating block that would rate nothing is refused rather than ignored.
+  const char* kNothing =
+      "rates a quasi-static check with a rack load whose materials carry strength "
+      "(iso6336_5): this job has none";
+  if (!L.quasi_static) {
+    if (s.contains("rating")) throw JobError("/scene/rating", kNothing);
+    return nullptr;
+  }
+  try {
+    nlohmann::json doc = gear::iso6336::rack_pinion_rating_document(pinion, L.face_width_m, pm, rm,
+                                                                    L.load_N, L.omega, options);
+    if (doc.is_null() && s.contains("rating")) throw JobError("/scene/rating", kNothing);
+    if (!doc.is_null()) gear::iso6336::rate_document(doc);
+    return doc;
+  } catch (const gear::iso6336::InvalidRating& e) {
+    const std::string& p = e.issues.at(0).pointer;
+    throw JobError(p == "/load/speed_rpm" ? "/scene/rating/speed_rpm" : "/scene/rating",
+                   e.issues.at(0).message);
+  }
+}
+
 }  // namespace
 
 double pinion_rim_depth_m(const nlohmann::json& pinion) {
@@ -925,6 +957,7 @@ Scene build_rack_pinion(const SceneInput& in) {
         {"particles_across_half_width", L.resolved.half_width / L.resolved.spacing}};
   }
 
+  L.rating_document = rating_document_of(s, L, pinion);
   scene.analyse = [L](const History& h, const Simulation& s2) {
     return analyse_rack_pinion(L, h, s2);
   };

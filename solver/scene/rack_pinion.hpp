@@ -68,6 +68,9 @@ struct GearLayout {
   std::vector<std::size_t> tooth0_particles;
   std::vector<gear::IsoToothForm> iso_by_radius;  // form radius to tip, ascending
   std::string selection;                          // how the modelled teeth were chosen, in words
+  // The ISO 6336 rating document of a loaded pair whose materials carry
+  // strength (gear/iso6336_simulated.hpp); null: no analysis.rating.
+  nlohmann::json rating_document;
 };
 
 // Particles of no modelled tooth (hub ring, rack) are marked with a number

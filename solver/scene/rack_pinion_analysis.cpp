@@ -10,6 +10,7 @@
 
 #include "solver/core/simulation.hpp"
 #include "solver/diagnostics/hertz_fit.hpp"
+#include "solver/gear/iso6336_simulated.hpp"
 #include "solver/scene/rack_pinion.hpp"
 
 namespace gearsph::scenes {
@@ -554,6 +555,9 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
     warn_of_an_unloaded_tooth0(a, sc, L);
     sc["linearity"] = static_linearity(h);
     a["static_check"] = sc;
+    if (!L.rating_document.is_null()) {
+      a["rating"] = gear::iso6336::rating_from_static_check(L.rating_document, sc);
+    }
   }
 
   const PeakPressure p = peak_contact_pressure(L, h, t);

@@ -51,3 +51,12 @@ test("a problem's pointer finds the field that concerns it", () => {
   assert.equal(fieldPointerFor("", pointers), null);
   assert.equal(fieldId("/scene/pinion/teeth"), "f-scene-pinion-teeth");
 });
+
+test("the strength fields add an ISO 6336-5 material only when a class is chosen", () => {
+  const cls = spec("/scene/material/iso6336_5/class");
+  assert.ok(cls.optional, "the class starts empty");
+  assert.deepEqual(fieldSchema(schema, cls.pointer).node.enum.includes("GJS"), true);
+  assert.equal(jobFromValues([[cls, ""], [spec("/scene/material/iso6336_5/hardness_HB"), ""]]).scene.material, undefined);
+  const job = jobFromValues([[cls, "GJS"], [spec("/scene/material/iso6336_5/hardness_HB"), "250"]]);
+  assert.deepEqual(job.scene.material.iso6336_5, { class: "GJS", hardness_HB: 250 });
+});

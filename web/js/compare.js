@@ -7,6 +7,7 @@ import { events } from "./events.js";
 import { duration, eng, int } from "./format.js";
 import { conditions, parseCsv } from "./results-data.js";
 import { h } from "./ui.js";
+import { safeties } from "./verdict-data.js";
 
 // [history column, title, quantity, SI unit, choose a prefix]
 const QUANTITIES = [
@@ -96,6 +97,12 @@ export function compareView(root, params) {
     if (disposed) return;
     state.textContent = `${runs.length} job${runs.length === 1 ? "" : "s"}`;
     const cond = conditions(runs.map((r) => r.job));
+    // Rated static checks: their safeties side by side (docs/rating.md).
+    const rated = runs.some((r) => safeties(r.summary));
+    const safety = (r, key) => {
+      const v = safeties(r.summary)?.[key];
+      return Number.isFinite(v) ? v.toFixed(2) : "—";
+    };
     const vst = (s) => s.velocity_stability_time_s === undefined ? "—"
       : s.velocity_stability_time_s < 0 ? "not settled" : eng(s.velocity_stability_time_s, "s");
     table.replaceChildren(h("table", {},
@@ -104,6 +111,8 @@ export function compareView(root, params) {
         h("th", { scope: "col", class: "num" }, "Max von Mises"),
         h("th", { scope: "col", class: "num" }, "Velocity-stability time"),
         h("th", { scope: "col", class: "num" }, "Max contact force"),
+        rated ? h("th", { scope: "col", class: "num" }, "S_F") : null,
+        rated ? h("th", { scope: "col", class: "num" }, "S_H") : null,
         h("th", { scope: "col", class: "num hide-narrow" }, "Particles"),
         h("th", { scope: "col", class: "num hide-narrow" }, "Wall time"))),
       h("tbody", {}, runs.map((r, k) => h("tr", {},
@@ -114,14 +123,17 @@ export function compareView(root, params) {
         h("td", { class: "num" }, eng(r.summary.max_von_mises_Pa, "Pa")),
         h("td", { class: "num" }, vst(r.summary)),
         h("td", { class: "num" }, r.summary.max_contact_force_N === undefined ? "—" : eng(r.summary.max_contact_force_N, "N")),
+        rated ? h("td", { class: "num" }, safety(r, "S_F")) : null,
+        rated ? h("td", { class: "num" }, safety(r, "S_H")) : null,
         h("td", { class: "num hide-narrow" }, int(r.summary.particles)),
         h("td", { class: "num hide-narrow" }, duration(r.summary.wall_s)))))));
     drawChart(runs);
     // The same table, in SI units, for a spreadsheet.
     const quote = (v) => (/[",\n]/.test(String(v)) ? `"${String(v).replace(/"/g, '""')}"` : String(v));
-    const rows = [["job", "jobID", "condition", "max_von_mises_Pa", "velocity_stability_time_s", "max_contact_force_N", "particles", "wall_s"],
+    const rows = [["job", "jobID", "condition", "max_von_mises_Pa", "velocity_stability_time_s", "max_contact_force_N", "particles", "wall_s", "S_F", "S_H"],
       ...runs.map((r, k) => [r.summary.name || r.job.name || "", r.id, cond[k] || "", r.summary.max_von_mises_Pa ?? "",
-        r.summary.velocity_stability_time_s ?? "", r.summary.max_contact_force_N ?? "", r.summary.particles ?? "", r.summary.wall_s ?? ""])];
+        r.summary.velocity_stability_time_s ?? "", r.summary.max_contact_force_N ?? "", r.summary.particles ?? "", r.summary.wall_s ?? "",
+        safeties(r.summary)?.S_F ?? "", safeties(r.summary)?.S_H ?? ""])];
     if (csvUrl) URL.revokeObjectURL(csvUrl);
     csvUrl = URL.createObjectURL(new Blob([rows.map((r) => r.map(quote).join(",")).join("\n") + "\n"], { type: "text/csv" }));
     csvLink.href = csvUrl;

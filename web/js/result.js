@@ -7,6 +7,7 @@ import { events } from "./events.js";
 import { bytes, duration, eng, eta, int, sig } from "./format.js";
 import { cancelJob, progressBar, statusBadge } from "./job-parts.js";
 import { filletPanel } from "./result-fillet.js";
+import { verdictPanel } from "./result-verdict.js";
 import { frameTimes, historyCharts, meshingZone, parseCsv } from "./results-data.js";
 import { h, put } from "./ui.js";
 
@@ -259,6 +260,7 @@ export function resultView(root, id) {
     const shown = (files || []).filter((f) => !f.name.startsWith("image-"))
       .sort((x, y) => (order.indexOf(x.name) + 99) % 99 - (order.indexOf(y.name) + 99) % 99);
     return h("div", { class: "stack" },
+      verdictPanel(s),
       h("section", { class: "panel", "aria-labelledby": "summary-head" },
         h("header", {}, h("h2", { id: "summary-head" }, "Summary")),
         h("div", { class: "body" }, h("table", { class: "summary-table", id: "summary-table" }, h("tbody", {},

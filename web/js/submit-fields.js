@@ -27,6 +27,15 @@ export const GROUPS = [
     { pointer: "/scene/material/nu", label: "Poisson's ratio ν" },
     { pointer: "/scene/material/rho_kg_m3", label: "Density ρ" },
   ]],
+  // A static check whose materials carry strength is rated (docs/rating.md).
+  ["Strength (ISO 6336-5, for the rating)", [
+    { pointer: "/scene/material/iso6336_5/class", label: "Class", type: "enum", optional: true },
+    { pointer: "/scene/material/iso6336_5/quality", label: "Quality", type: "enum", optional: true },
+    { pointer: "/scene/material/iso6336_5/hardness_HB", label: "Hardness HB", optional: true },
+    { pointer: "/scene/material/sigma_Hlim_Pa", label: "σ_Hlim", placeholder: "from the class", optional: true },
+    { pointer: "/scene/material/sigma_Flim_Pa", label: "σ_Flim", placeholder: "from the class", optional: true },
+    { pointer: "/scene/material/yield_Pa", label: "Yield strength", optional: true },
+  ]],
   ["Discretisation and method", [
     { pointer: "/discretization/spacing_mm", label: "Particle spacing" },
     { pointer: "/discretization/kernel", label: "Kernel", type: "enum" },

@@ -17,7 +17,10 @@ export function jobForm({ onEdit }) {
     const id = fieldId(spec.pointer);
     let input;
     if (spec.type === "enum" && node?.enum) {
-      input = h("select", { id, name: spec.pointer }, node.enum.map((v) => h("option", { value: v }, v)));
+      // An optional choice starts empty: nothing is sent unless one is picked.
+      const none = spec.optional ? [h("option", { value: "" }, "—")] : [];
+      input = h("select", { id, name: spec.pointer },
+        [...none, ...node.enum.map((v) => h("option", { value: v }, v))]);
     } else if (spec.type === "text" || spec.type === "teeth") {
       input = h("input", { id, name: spec.pointer, type: "text", autocomplete: "off",
         placeholder: spec.type === "teeth" ? "auto, all or a number" : "" });
@@ -48,9 +51,11 @@ export function jobForm({ onEdit }) {
   }
 
   function fill(job) {
-    for (const [pointer, { input, def }] of inputs) {
+    for (const [pointer, { input, def, spec }] of inputs) {
       let v = getPointer(job, pointer);
-      if (v === undefined && def !== undefined && typeof def !== "object") v = def;
+      // An optional block's fields (the material's strength) start empty:
+      // a default alone must not make the job carry the block.
+      if (v === undefined && def !== undefined && typeof def !== "object" && !spec.optional) v = def;
       input.value = formText(v);
     }
   }

@@ -1,0 +1,21 @@
+// The result view's "Verdict" panel: each failure mode's ISO 6336 safety
+// against its required value, green, amber or red, the governing mode first.
+import { h } from "./ui.js";
+import { verdictRows } from "./verdict-data.js";
+
+// null when the run was not rated.
+export function verdictPanel(summary) {
+  const rows = verdictRows(summary);
+  if (!rows.length) return null;
+  const r = summary.analysis.rating;
+  return h("section", { class: "panel", id: "verdict", "aria-labelledby": "verdict-head" },
+    h("header", {}, h("h2", { id: "verdict-head" }, "Verdict"),
+      h("span", { class: "muted" }, `governing: ${rows[0].mode.toLowerCase()}; contact at ${r.load_point}`)),
+    h("div", { class: "body" }, h("table", { class: "summary-table" }, h("tbody", {},
+      rows.map((row) => h("tr", { class: `verdict ${row.level}` },
+        h("td", {}, row.mode),
+        h("td", { class: "num" }, h("strong", {}, row.S.toFixed(2))),
+        h("td", { class: "num" }, `≥ ${row.required}`),
+        h("td", {}, h("span", { class: `verdict-badge ${row.level}` }, row.level)),
+        h("td", { class: "muted" }, row.note)))))));
+}
