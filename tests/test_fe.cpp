@@ -590,16 +590,21 @@ TEST(FeGear, JobsTheCheckCannotModelAreRefusedWithTheirField) {
   }
 }
 
-TEST(FeGear, ComparisonGivesSphFeAndErrorOrSaysWhatIsMissing) {
-  nlohmann::json fe = {
+// An fe_summary.json's fillet numbers, ISO's sigma_F0 and the load.
+nlohmann::json fe_summary_of(double normal_force_N, const std::string& source) {
+  return {
       {"fillet_tension_peak_Pa", 3.5e8},
       {"fillet_tension_peak_radius_m", 0.0205},
       {"fillet_compression_peak_Pa", -4.2e8},
       {"fillet_stress_at_iso30_Pa", 3.4e8},
       {"reference_fillet_size_m", 1e-4},
-      {"load", {{"normal_force_N", 7449.0}, {"load_radius_m", 0.0262}, {"source", "nominal"}}},
-      {"iso_6336_3", {{"sigma_F0_Pa", 3.6e8}}},
-      {"image_range_Pa", {-5.25e8, 5.25e8}}};
+      {"load", {{"normal_force_N", normal_force_N}, {"load_radius_m", 0.0262}, {"source", source}}},
+      {"iso_6336_3", {{"sigma_F0_Pa", 3.6e8}}}};
+}
+
+TEST(FeGear, ComparisonGivesSphFeAndErrorOrSaysWhatIsMissing) {
+  nlohmann::json fe = fe_summary_of(7449.0, "nominal");
+  fe["image_range_Pa"] = {-5.25e8, 5.25e8};
   nlohmann::json sph = {{"analysis", {{"static_check", {{"tooth0_force_N", 7449.0}}}}}};
   nlohmann::json block = fe_comparison(sph, fe);
   EXPECT_EQ(block.at("status"), "sph_values_missing");
@@ -680,15 +685,8 @@ TEST(FeGear, ModelsTheStructureTheSphStaticCheckModels) {
   EXPECT_EQ(o.normal_force_N, 1064.0);
   EXPECT_NE(o.load_source.find("run/summary.json"), std::string::npos);
 
-  nlohmann::json fe = {
-      {"fillet_tension_peak_Pa", 3.5e8},
-      {"fillet_tension_peak_radius_m", 0.0205},
-      {"fillet_compression_peak_Pa", -4.2e8},
-      {"fillet_stress_at_iso30_Pa", 3.4e8},
-      {"reference_fillet_size_m", 1e-4},
-      {"load", {{"normal_force_N", 1064.0}, {"load_radius_m", 0.0262}, {"source", "sph"}}},
-      {"iso_6336_3", {{"sigma_F0_Pa", 3.6e8}}},
-      {"model", {{"teeth", {-1, 2}}, {"fixed_radius_m", 0.015}}}};
+  nlohmann::json fe = fe_summary_of(1064.0, "sph");
+  fe["model"] = {{"teeth", {-1, 2}}, {"fixed_radius_m", 0.015}};
   nlohmann::json st = fe_comparison(sph, fe).at("structure");
   EXPECT_EQ(st.at("same"), true) << st;
   // Three FE teeth against the run's four: said, not hidden.
