@@ -209,6 +209,19 @@ json kirsch_job(bool quick) {
             {"hole_radius_m", quick ? 0.002 : 0.004}}}};
 }
 
+// A cracked plate (docs/cracks.md), W = 40 mm, L = 2 W; the crack's default
+// spacing (a tenth of a), or half of it in the full variant.
+json cracked_plate_job(const std::string& kind, double length, double angle_deg, bool quick) {
+  const double a = kind == "edge" ? length : 0.5 * length;
+  return {{"name", "cracked-plate-" + kind},
+          {"scene",
+           {{"type", "cracked_plate"},
+            {"width_m", 0.04},
+            {"length_m", 0.08},
+            {"crack", {{"kind", kind}, {"length_m", length}, {"angle_deg", angle_deg}}}}},
+          {"discretization", {{"spacing_m", a / (quick ? 10.0 : 20.0)}}}};
+}
+
 json lame_job() {
   return {{"name", "lame"}, {"scene", {{"type", "thick_cylinder"}}}};
 }
@@ -348,6 +361,22 @@ std::vector<Case> cases(bool quick) {
                  "Lame, plane strain: (1 + nu) p a^2 / (E (b^2 - a^2)) [(1 - 2 nu) a + b^2 / a]",
                  0.02, lame_job(),
                  relative("bore_displacement_m", "reference_bore_displacement_m")});
+  // Stress intensity factors of a crack cut in the particles, by the
+  // interaction integral (docs/cracks.md).
+  out.push_back({"cracked_plate/edge_K_I", "cracks", "K_I of an edge crack, a/W = 0.3 [Pa m^0.5]",
+                 "Tada: sigma sqrt(pi a) F(a/W), F = 1.12 - 0.231 s + 10.55 s^2 - ...", 0.03,
+                 cracked_plate_job("edge", 0.012, 0.0, quick),
+                 relative("K_I_Pa_sqrt_m", "reference_K_I_Pa_sqrt_m")});
+  out.push_back({"cracked_plate/centre_30deg_K_I", "cracks",
+                 "K_I of a centre crack at 30 deg, 2a/W = 0.3 [Pa m^0.5]",
+                 "Tada: sigma cos^2(b) sqrt(pi a) F(2a cos(b) / W)", 0.03,
+                 cracked_plate_job("centre", 0.012, 30.0, quick),
+                 relative("K_I_Pa_sqrt_m", "reference_K_I_Pa_sqrt_m")});
+  out.push_back({"cracked_plate/centre_30deg_K_II", "cracks",
+                 "K_II of a centre crack at 30 deg, 2a/W = 0.3 [Pa m^0.5]",
+                 "Tada: sigma sin(b) cos(b) sqrt(pi a) F(2a cos(b) / W)", 0.05,
+                 cracked_plate_job("centre", 0.012, 30.0, quick),
+                 relative("K_II_Pa_sqrt_m", "reference_K_II_Pa_sqrt_m")});
   // The gear's fillet, tooth 0 loaded alone, against ISO 6336-3 method B
   // at the same load radius (its formulas' own accuracy, about 15 %).
   for (const char* point : {"pitch", "hpstc", "tip"}) {
