@@ -153,9 +153,12 @@ CheckCase check_case(GearFeJob job, const FeCheckOptions& o,
     k.job.rim_depth_m = *o.rim_depth_m;
     c.fixed_radius_m = pinion.root_radius() - k.job.rim_depth_m;
   }
-  if (o.neighbours) c.neighbours = *o.neighbours;
-  c.whole_gear = o.whole_gear;
-  k.whole = c.whole_gear || 2 * c.neighbours + 1 >= pinion.teeth();
+  if (o.teeth) {
+    c.first_tooth = o.teeth->first;
+    c.last_tooth = o.teeth->second;
+  }
+  if (o.whole_gear) c.whole_gear = true;
+  k.whole = models_whole_gear(c);
   return k;
 }
 
@@ -165,7 +168,7 @@ nlohmann::json model_json(const CheckCase& k, const geometry::PinionGeometry& pi
   return {
       {"frame", "gear frame of gear_profile.hpp: pinion centre at the origin, tooth 0 along -y"},
       {"teeth",
-       k.whole ? nlohmann::json("all") : nlohmann::json::array({-c.neighbours, c.neighbours})},
+       k.whole ? nlohmann::json("all") : nlohmann::json::array({c.first_tooth, c.last_tooth})},
       {"held", k.whole ? "u = 0 on the bore r = fixed_radius_m"
                        : "u = 0 on the inner arc r = fixed_radius_m (where the SPH hub ring "
                          "begins); the radial cut sides are free"},
@@ -375,6 +378,104 @@ nlohmann::json run_fe_check(const nlohmann::json& job, const std::filesystem::pa
   return s;
 }
 
+namespace {
+
+bool positive(const nlohmann::json& j, const char* key) {
+  return j.contains(key) && j[key].is_number() && j[key].get<double>() > 0.0;
+}
+
+// What a finished SPH static check modelled (its summary's model block):
+// the pinion's teeth, the radius its hub ring holds, the rack's teeth.
+// Null where the summary does not say.
+nlohmann::json sph_structure(const nlohmann::json& sph) {
+  if (!sph.contains("model") || !sph["model"].contains("pinion")) return nullptr;
+  const nlohmann::json& pm = sph["model"]["pinion"];
+  nlohmann::json out = nlohmann::json::object();
+  if (pm.contains("modelled_teeth") && pm["modelled_teeth"].is_array() &&
+      !pm["modelled_teeth"].empty()) {
+    out["pinion_teeth"] = pm["modelled_teeth"];
+    if (pm.contains("teeth")) out["gear_teeth"] = pm["teeth"];
+  }
+  if (positive(pm, "deformable_from_radius_m")) {
+    out["held_radius_m"] = pm["deformable_from_radius_m"];
+  }
+  if (positive(pm, "root_radius_m")) out["root_radius_m"] = pm["root_radius_m"];
+  if (sph["model"].contains("rack")) {
+    out["rack_teeth"] = sph["model"]["rack"].value("modelled_teeth", 0);
+  }
+  return out;
+}
+
+}  // namespace
+
+void model_the_sph_run(const nlohmann::json& sph, const std::string& source, FeCheckOptions& o) {
+  if (sph.contains("analysis") && sph["analysis"].contains("static_check")) {
+    const nlohmann::json& sc = sph["analysis"]["static_check"];
+    if (positive(sc, "tooth0_force_N")) o.normal_force_N = sc["tooth0_force_N"].get<double>();
+    if (positive(sc, "load_radius_m")) o.load_radius_m = sc["load_radius_m"].get<double>();
+    o.load_source =
+        "the SPH run's tooth-0 normal force and load radius (" + source + " analysis.static_check)";
+  }
+  const nlohmann::json st = sph_structure(sph);
+  if (st.is_null()) return;
+  if (st.contains("pinion_teeth")) {
+    const std::vector<int> teeth = st["pinion_teeth"].get<std::vector<int>>();
+    if (st.contains("gear_teeth") &&
+        static_cast<int>(teeth.size()) >= st["gear_teeth"].get<int>()) {
+      o.whole_gear = true;
+    } else {
+      o.teeth = std::pair{teeth.front(), teeth.back()};
+    }
+  }
+  if (st.contains("held_radius_m") && st.contains("root_radius_m")) {
+    o.rim_depth_m = st["root_radius_m"].get<double>() - st["held_radius_m"].get<double>();
+  }
+}
+
+namespace {
+
+// What the FE model and the SPH run modelled, side by side, and whether
+// they are the same structure: a comparison means something only then.
+nlohmann::json structure_comparison(const nlohmann::json& fe, const nlohmann::json& sph) {
+  if (!fe.contains("model")) {
+    return {{"same", nullptr}, {"note", "the FE summary does not say what it modelled"}};
+  }
+  const nlohmann::json& m = fe.at("model");
+  nlohmann::json fe_side = {{"pinion_teeth", m.at("teeth")},
+                            {"held_radius_m", m.at("fixed_radius_m")},
+                            {"rack_teeth", 1}};
+  nlohmann::json block = {{"fe", fe_side}, {"sph", sph}};
+  if (sph.is_null() || !sph.contains("pinion_teeth")) {
+    block["same"] = nullptr;
+    block["note"] = "the SPH run's summary does not say what it modelled";
+    return block;
+  }
+  std::vector<std::string> differ;
+  const std::vector<int> teeth = sph.at("pinion_teeth").get<std::vector<int>>();
+  const bool sph_whole =
+      sph.contains("gear_teeth") && static_cast<int>(teeth.size()) >= sph["gear_teeth"].get<int>();
+  const nlohmann::json& ft = m.at("teeth");
+  const bool same_teeth = ft.is_string() ? sph_whole
+                                         : !sph_whole && ft[0].get<int>() == teeth.front() &&
+                                               ft[1].get<int>() == teeth.back();
+  if (!same_teeth) differ.push_back("pinion teeth");
+  if (sph.contains("held_radius_m") &&
+      std::abs(sph["held_radius_m"].get<double>() - m.at("fixed_radius_m").get<double>()) > 1e-9) {
+    differ.push_back("held radius");
+  }
+  if (sph.value("rack_teeth", 1) != 1) differ.push_back("rack teeth");
+  block["same"] = differ.empty();
+  std::string list;
+  for (const std::string& d : differ) list += (list.empty() ? "" : ", ") + d;
+  block["note"] = differ.empty()
+                      ? "both model the same pinion teeth on the same held rim, and one rack tooth"
+                      : "the two models differ in: " + list +
+                            " (the FE rack is always one tooth cut at the space centres)";
+  return block;
+}
+
+}  // namespace
+
 nlohmann::json fe_comparison(const nlohmann::json& sph_summary, const nlohmann::json& fe) {
   const nlohmann::json* check = nullptr;
   if (sph_summary.contains("analysis") && sph_summary["analysis"].contains("static_check")) {
@@ -405,6 +506,7 @@ nlohmann::json fe_comparison(const nlohmann::json& sph_summary, const nlohmann::
     block["message"] = "the SPH static check (summary analysis.static_check) does not give " +
                        list + "; only the FE values are shown";
   }
+  block["structure"] = structure_comparison(fe, sph_structure(sph_summary));
   block["fe_summary"] = "fe_summary.json";
   block["fe_fillet_size_m"] = fe.at("reference_fillet_size_m");
   block["load"] = {{"normal_force_N", fe.at("load").at("normal_force_N")},
@@ -472,21 +574,9 @@ void add_fe_comparison(const PreparedJob& job, const RunResult& run,
   FeCheckOptions o;
   o.threads = std::max(1, job.scene.sim.threads);
   if (eo.observer) o.cancelled = [obs = eo.observer] { return obs->cancelled(); };
-  // The SPH run's own load on tooth 0, so that both solve the same problem.
-  if (summary.contains("analysis") && summary["analysis"].contains("static_check")) {
-    const nlohmann::json& sc = summary["analysis"]["static_check"];
-    if (sc.contains("tooth0_force_N") && sc["tooth0_force_N"].is_number() &&
-        sc["tooth0_force_N"].get<double>() > 0.0) {
-      o.normal_force_N = sc["tooth0_force_N"].get<double>();
-    }
-    if (sc.contains("load_radius_m") && sc["load_radius_m"].is_number() &&
-        sc["load_radius_m"].get<double>() > 0.0) {
-      o.load_radius_m = sc["load_radius_m"].get<double>();
-    }
-    o.load_source =
-        "the SPH run's tooth-0 normal force and load radius (summary "
-        "analysis.static_check)";
-  }
+  // The SPH run's own load on tooth 0 and its structure, so that both solve
+  // the same problem.
+  model_the_sph_run(summary, "summary", o);
   try {
     summary["fe_comparison"] = fe_comparison(summary, run_fe_check(job.job, dir, o));
   } catch (const FeUnavailable& e) {

@@ -15,6 +15,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -35,13 +36,21 @@ struct FeCheckOptions {
   // radius) instead of the job's nominal load, and what to call it.
   std::optional<double> normal_force_N, load_radius_m;
   std::string load_source;
-  // Where the model is held and how many teeth it has (default: the job's).
+  // Where the model is held and which teeth it has (default: what the SPH
+  // static check of the job models).
   std::optional<double> rim_depth_m;
-  std::optional<int> neighbours;
+  std::optional<std::pair<int, int>> teeth;  // first and last, tooth 0 loaded
   bool whole_gear = false;
   std::function<bool()> cancelled;              // checked between meshes
   std::function<void(const std::string&)> log;  // progress lines
 };
+
+// The options that make the FE check solve what a finished SPH static check
+// solved (its summary.json): its measured tooth-0 force and load radius,
+// its modelled teeth and the radius its hub ring holds. `source` names the
+// summary in words.
+void model_the_sph_run(const nlohmann::json& sph_summary, const std::string& source,
+                       FeCheckOptions& options);
 
 // Solves, writes the files above into `out_dir` and returns fe_summary.json's
 // content. Throws InvalidJob (a job it cannot model), FeUnavailable (no

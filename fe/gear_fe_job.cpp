@@ -80,7 +80,12 @@ GearFeJob read_gear_fe_job(const nlohmann::json& job) {
   c.rack_back_m = rj.contains("back_thickness_mm") ? 1e-3 * rj.at("back_thickness_mm").get<double>()
                                                    : 2.0 * c.pinion.tool.module_m;
   c.rack_backlash_m = 1e-3 * rj.at("backlash_mm").get<double>();
-  // Held where the scene's hub ring begins (rack_pinion.cpp: r_drive).
+  // The teeth the scene's static check models (tooth 0 and at least its
+  // neighbours), held where its hub ring begins (rack_pinion.cpp: r_drive).
+  const std::vector<int> teeth = scenes::static_check_pinion_teeth(pj);
+  c.first_tooth = teeth.front();
+  c.last_tooth = teeth.back();
+  c.whole_gear = static_cast<int>(teeth.size()) >= c.pinion.teeth;
   out.rim_depth_m = scenes::pinion_rim_depth_m(pj);
   c.fixed_radius_m = pinion->root_radius() - out.rim_depth_m;
   if (!(c.fixed_radius_m > 0.0)) {

@@ -155,9 +155,9 @@ GearLoadPatch load_patch(const geometry::PinionGeometry& g, const GearFeCase& c)
 // Sets out.outline, out.holes and out.fillets.
 MeshSpec model_region(const geometry::PinionGeometry& g, const GearFeCase& c, double sample_step_m,
                       GearFeResult& out) {
-  const bool whole = c.whole_gear || 2 * c.neighbours + 1 >= g.teeth();
+  const bool whole = models_whole_gear(c);
   out.outline =
-      whole ? g.outline() : g.sector_outline(-c.neighbours, c.neighbours, c.fixed_radius_m);
+      whole ? g.outline() : g.sector_outline(c.first_tooth, c.last_tooth, c.fixed_radius_m);
   out.fillets = gear::tooth_fillets(g, 0, geometry::Transform{},
                                     c.normal_force_N * out.load.direction, sample_step_m);
   const Polygon& poly = out.outline;

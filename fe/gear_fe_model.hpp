@@ -7,7 +7,9 @@
 // with the same definitions (gear/fillet.hpp).
 //
 // Model (gear frame of gear_profile.hpp: tooth 0 points along -y):
-//  - teeth -n..n (default n = 1) and the rim down to `fixed_radius`, cut by
+//  - the teeth the SPH static check models (tooth 0 and its neighbours at
+//    least: rack_pinion.hpp, static_check_pinion_teeth) and the rim down to
+//    `fixed_radius`, cut by
 //    radial lines through the middles of the outer spaces; the cut sides
 //    are free, the inner arc is held (u = 0): the SPH particles inside the
 //    drive radius move with the hub, which a quasi-static run holds still.
@@ -54,10 +56,17 @@ struct GearFeCase {
   // (rack_fe_model.hpp).
   double rack_back_m = 0.0;
   double rack_backlash_m = 0.0;
-  int neighbours = 1;       // teeth each side of tooth 0
-  bool whole_gear = false;  // all teeth, held on a bore of fixed_radius_m
+  // Teeth first_tooth..last_tooth (numbered as the SPH scene numbers them,
+  // tooth 0 loaded), or all of them, held on a bore of fixed_radius_m.
+  int first_tooth = -1, last_tooth = 1;
+  bool whole_gear = false;
   double fixed_radius_m = 0.0;
 };
+
+// The whole gear: asked for, or as many teeth as it has.
+inline bool models_whole_gear(const GearFeCase& c) {
+  return c.whole_gear || c.last_tooth - c.first_tooth + 1 >= c.pinion.teeth;
+}
 
 // Element sizes [m]: `fillet` along both fillets of tooth 0 (within
 // `fillet_band` of them) and at the load, growing linearly to `max` at

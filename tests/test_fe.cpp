@@ -643,6 +643,70 @@ TEST(FeGear, ComparisonGivesSphFeAndErrorOrSaysWhatIsMissing) {
               1e-12);
 }
 
+// The FE model has the teeth the SPH static check of the same job models
+// (tooth 0 and at least its neighbours), and under --compare or a run's
+// fe_check those of the finished run, held at its hub ring's radius; the
+// comparison says what each modelled.
+TEST(FeGear, ModelsTheStructureTheSphStaticCheckModels) {
+  auto teeth_of = [](const nlohmann::json& modelled) {
+    nlohmann::json job = gear_job("pitch");
+    job["scene"]["pinion"]["modelled_teeth"] = modelled;
+    const GearFeCase c = read_gear_fe_job(validate_job(job)).model;
+    return c.whole_gear ? std::string("all")
+                        : std::to_string(c.first_tooth) + ".." + std::to_string(c.last_tooth);
+  };
+  EXPECT_EQ(teeth_of("auto"), "-1..1");
+  EXPECT_EQ(teeth_of(1), "-1..1");
+  EXPECT_EQ(teeth_of(5), "-2..2");
+  EXPECT_EQ(teeth_of(4), "-1..2");
+  EXPECT_EQ(teeth_of("all"), "all");
+
+  nlohmann::json sph = {
+      {"analysis", {{"static_check", {{"tooth0_force_N", 1064.0}, {"load_radius_m", 0.0262}}}}},
+      {"model",
+       {{"pinion",
+         {{"teeth", 12},
+          {"modelled_teeth", {-1, 0, 1, 2}},
+          {"root_radius_m", 0.019},
+          {"deformable_from_radius_m", 0.015}}},
+        {"rack", {{"modelled_teeth", 1}}}}}};
+  FeCheckOptions o;
+  model_the_sph_run(sph, "run/summary.json", o);
+  ASSERT_TRUE(o.teeth.has_value());
+  EXPECT_EQ(*o.teeth, std::pair(-1, 2));
+  EXPECT_FALSE(o.whole_gear);
+  ASSERT_TRUE(o.rim_depth_m.has_value());
+  EXPECT_NEAR(*o.rim_depth_m, 0.004, 1e-15);
+  EXPECT_EQ(o.normal_force_N, 1064.0);
+  EXPECT_NE(o.load_source.find("run/summary.json"), std::string::npos);
+
+  nlohmann::json fe = {
+      {"fillet_tension_peak_Pa", 3.5e8},
+      {"fillet_tension_peak_radius_m", 0.0205},
+      {"fillet_compression_peak_Pa", -4.2e8},
+      {"fillet_stress_at_iso30_Pa", 3.4e8},
+      {"reference_fillet_size_m", 1e-4},
+      {"load", {{"normal_force_N", 1064.0}, {"load_radius_m", 0.0262}, {"source", "sph"}}},
+      {"iso_6336_3", {{"sigma_F0_Pa", 3.6e8}}},
+      {"model", {{"teeth", {-1, 2}}, {"fixed_radius_m", 0.015}}}};
+  nlohmann::json st = fe_comparison(sph, fe).at("structure");
+  EXPECT_EQ(st.at("same"), true) << st;
+  // Three FE teeth against the run's four: said, not hidden.
+  fe["model"]["teeth"] = {-1, 1};
+  st = fe_comparison(sph, fe).at("structure");
+  EXPECT_EQ(st.at("same"), false) << st;
+  EXPECT_NE(st.at("note").get<std::string>().find("pinion teeth"), std::string::npos);
+  // A whole pinion in the run and a sector in FE differ too.
+  sph["model"]["pinion"]["modelled_teeth"] = nlohmann::json::array();
+  for (int k = 0; k < 12; ++k) sph["model"]["pinion"]["modelled_teeth"].push_back(k);
+  FeCheckOptions whole;
+  model_the_sph_run(sph, "run", whole);
+  EXPECT_TRUE(whole.whole_gear);
+  EXPECT_EQ(fe_comparison(sph, fe).at("structure").at("same"), false);
+  fe["model"]["teeth"] = "all";
+  EXPECT_EQ(fe_comparison(sph, fe).at("structure").at("same"), true);
+}
+
 // ------------------------------------------------------------------- CLI --
 
 int run_shell(const std::string& command) {

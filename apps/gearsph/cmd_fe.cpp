@@ -101,7 +101,7 @@ int cmd_fe(Args& args) {
     } else {
       const int n = static_cast<int>(positive_number("teeth", *v));
       if (n % 2 == 0) throw std::invalid_argument("--teeth takes an odd number or all");
-      o.neighbours = n / 2;
+      o.teeth = std::pair{-(n / 2), n / 2};
     }
   }
   const auto compare = args.option("compare");
@@ -122,11 +122,18 @@ int cmd_fe(Args& args) {
           "--compare: " + *compare +
           "/summary.json has no analysis.static_check (not a quasi-static rack_pinion run)");
     }
-    const nlohmann::json& sc = sph["analysis"]["static_check"];
-    if (sc.contains("tooth0_force_N")) o.normal_force_N = sc.at("tooth0_force_N").get<double>();
-    if (sc.contains("load_radius_m")) o.load_radius_m = sc.at("load_radius_m").get<double>();
-    o.load_source = "the SPH run's tooth-0 normal force and load radius (" + *compare +
-                    "/summary.json, analysis.static_check)";
+    // The SPH run's load and structure (teeth, held rim), unless the
+    // command line gives its own.
+    const auto teeth = o.teeth;
+    const bool whole = o.whole_gear;
+    const auto rim = o.rim_depth_m;
+    o.whole_gear = false;
+    fe::model_the_sph_run(sph, *compare + "/summary.json", o);
+    if (teeth || whole) {
+      o.teeth = teeth;
+      o.whole_gear = whole;
+    }
+    if (rim) o.rim_depth_m = rim;
   }
   nlohmann::json summary;
   try {

@@ -56,9 +56,9 @@ usage:
       finite-element check of a quasi-static rack_pinion job (gmsh, CalculiX): tooth 0
       under the job's load at its contact_point, meshed at each fillet element size
       (default: 1/12 and 1/24 of ISO's fillet radius, 0.2 and 0.1 mm for the paper's
-      pinion; the finest is the reference); held like the SPH hub unless --rim-depth-mm
-      or --teeth say otherwise; --compare takes the load from a finished SPH run and
-      writes fe_comparison.json; writes DIR/fe_summary.json, fe_fillet_curves.csv/.json
+      pinion; the finest is the reference); the teeth and rim the SPH static check
+      models unless --rim-depth-mm or --teeth say otherwise; --compare takes the load and
+      the structure from a finished SPH run and writes fe_comparison.json; writes DIR/fe_summary.json, fe_fillet_curves.csv/.json
       and PNG images; --keep-model-files keeps the .geo/.inp/.frd in DIR/fe_model
   gearsph render RUN_DIR|results.h5 --out FILE.png [--field von_mises] [--frame K] [--zoom x0,y0,x1,y1] [--range lo,hi]
       a frame of a run as the service draws it (frame -1: the last); --range fixes the

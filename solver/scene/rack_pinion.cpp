@@ -96,19 +96,8 @@ std::vector<int> teeth_in_window(double offset, double travel, double lo, double
 // pinion turns `turn` pitches ("auto"), all of them, or a count.
 std::vector<int> choose_pinion_teeth(const nlohmann::json& choice, const GearLayout& L, double turn,
                                      double lo, double hi) {
-  std::vector<int> teeth;
   if (choice == "auto") return teeth_in_window(0.0, turn, lo, hi, L.teeth);
-  if (choice == "all") {
-    for (int k = 0; k < L.teeth; ++k) teeth.push_back(k);
-    return teeth;
-  }
-  // n teeth from the one in mesh, extended toward where teeth come from.
-  const int n = choice.get<int>();
-  const int dir = L.omega <= 0 ? 1 : -1;
-  const int first = -(n - 1) / 2;
-  for (int k = 0; k < n; ++k) teeth.push_back(dir * (first + k));
-  std::sort(teeth.begin(), teeth.end());
-  return teeth;
+  return counted_pinion_teeth(choice, L.teeth, L.omega);
 }
 
 // Rack teeth as offsets u - 1/2 from the pitch point (a pinion tooth sits
@@ -307,11 +296,9 @@ ModelledTeeth choose_modelled_teeth(const nlohmann::json& s, GearLayout& L,
   const nlohmann::json& rj = s.at("rack");
   ModelledTeeth t = engagement_window(L, pinion);
   // A static check loads tooth 0 alone, as ISO 6336's single-pair numbers
-  // assume: "auto" then models it with its two neighbours (the rim beside
-  // its fillets), against the one rack tooth that meets its driving flank.
-  const bool static_auto = L.quasi_static && pj.at("modelled_teeth") == "auto";
-  t.pinion = static_auto ? std::vector<int>{-1, 0, 1}
-                         : choose_pinion_teeth(pj.at("modelled_teeth"), L, t.turn, t.lo, t.hi);
+  // assume, against the one rack tooth that meets its driving flank.
+  t.pinion = L.quasi_static ? static_check_pinion_teeth(pj)
+                            : choose_pinion_teeth(pj.at("modelled_teeth"), L, t.turn, t.lo, t.hi);
   if (t.pinion.empty()) t.pinion.push_back(0);
   if (static_cast<int>(t.pinion.size()) > L.teeth) {
     t.pinion.resize(static_cast<std::size_t>(L.teeth));
@@ -321,9 +308,12 @@ ModelledTeeth choose_modelled_teeth(const nlohmann::json& s, GearLayout& L,
 
   // The rack tooth left of tooth 0 (space 1) meets a clockwise pinion's
   // driving flank, the one right of it (space 0) a counter-clockwise one's.
-  t.rack_offsets = L.quasi_static && rj.at("modelled_teeth") == "auto"
+  // A static check's count of one is that tooth: the middle one of a count
+  // (choose_rack_offsets) would be the one beside the other flank.
+  const nlohmann::json& rack_choice = rj.at("modelled_teeth");
+  t.rack_offsets = L.quasi_static && (rack_choice == "auto" || rack_choice == 1)
                        ? std::vector<int>{clockwise(L) ? -1 : 0}
-                       : choose_rack_offsets(rj.at("modelled_teeth"), L, t.rack_turn, t.lo, t.hi);
+                       : choose_rack_offsets(rack_choice, L, t.rack_turn, t.lo, t.hi);
   const int m_min = t.rack_offsets.front(), m_max = t.rack_offsets.back();
   for (int m = m_min; m <= m_max; ++m) L.rack_teeth.push_back(m - m_min);
   return t;
@@ -744,6 +734,7 @@ std::string explain_selection(const nlohmann::json& pj, const GearLayout& L,
       << L.path.contact_ratio << ", plus half a pitch each side); in " << L.end_s
       << " s the pinion turns " << std::abs(teeth.turn) << " pitch and the rack travels "
       << std::abs(teeth.rack_turn) << " pitch";
+  if (L.quasi_static) return static_check_teeth_reason(pj);
   return pj.at("modelled_teeth") == "auto" ? why.str() : "set by the job (modelled_teeth)";
 }
 
@@ -809,6 +800,58 @@ nlohmann::json describe_mesh(const Simulation& sim, const nlohmann::json& s, con
 double pinion_rim_depth_m(const nlohmann::json& pinion) {
   if (pinion.contains("rim_depth_mm")) return 1e-3 * pinion.at("rim_depth_mm").get<double>();
   return 1e-3 * pinion.at("module_mm").get<double>();
+}
+
+std::vector<int> counted_pinion_teeth(const nlohmann::json& choice, int teeth, double omega) {
+  std::vector<int> out;
+  if (choice == "all") {
+    for (int k = 0; k < teeth; ++k) out.push_back(k);
+    return out;
+  }
+  // n teeth from the one in mesh, extended toward where teeth come from.
+  const int n = choice.get<int>();
+  const int dir = omega <= 0 ? 1 : -1;
+  const int first = -(n - 1) / 2;
+  for (int k = 0; k < n; ++k) out.push_back(dir * (first + k));
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<int> static_check_pinion_teeth(const nlohmann::json& pinion) {
+  const int z = pinion.at("teeth").get<int>();
+  const nlohmann::json& choice = pinion.at("modelled_teeth");
+  std::vector<int> out{-1, 0, 1};
+  if (choice != "auto") {
+    // The job's count, widened to tooth 0's neighbours: one tooth alone
+    // lost the rim beside its fillets and read the fillet peak 8-25 % low
+    // against an FE model of the same single tooth's gear (docs/gears.md).
+    const std::vector<int> asked =
+        counted_pinion_teeth(choice, z, pinion.at("omega_rad_s").get<double>());
+    out.insert(out.end(), asked.begin(), asked.end());
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+  }
+  if (static_cast<int>(out.size()) > z) out.resize(static_cast<std::size_t>(z));
+  return out;
+}
+
+std::string static_check_teeth_reason(const nlohmann::json& pinion) {
+  const std::string base =
+      "a static check loads tooth 0 alone (ISO 6336's single pair) against the rack tooth that "
+      "meets its driving flank";
+  const nlohmann::json& choice = pinion.at("modelled_teeth");
+  if (choice == "auto")
+    return base +
+           "; its two neighbours are modelled, unloaded, as the rim "
+           "beside its fillets";
+  if (choice == "all") return base + "; the whole pinion is modelled (modelled_teeth \"all\")";
+  const int n = choice.get<int>();
+  if (n < 3) {
+    return base + "; the job asked for " + std::to_string(n) + (n == 1 ? " tooth" : " teeth") +
+           ": tooth 0's two neighbours are modelled too, unloaded, since its fillets' stress "
+           "needs the rim beside them";
+  }
+  return base + "; " + std::to_string(n) + " teeth, set by the job (modelled_teeth)";
 }
 
 Scene build_rack_pinion(const SceneInput& in) {

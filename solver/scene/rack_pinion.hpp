@@ -101,6 +101,20 @@ double velocity_stability_time(const std::vector<double>& t, const std::vector<d
 // with it (+34 % and -9 % against ISO where module 4 read +11 %).
 double pinion_rim_depth_m(const nlohmann::json& pinion);
 
+// The pinion teeth of a count ("all" or a number n: n teeth from the one in
+// mesh, extended toward where teeth come from, i.e. +k for a clockwise
+// pinion, omega <= 0), numbered from the one in mesh, ascending.
+std::vector<int> counted_pinion_teeth(const nlohmann::json& choice, int teeth, double omega);
+
+// The pinion teeth a static check (quasi_static) models, ascending: tooth
+// 0, which carries the load, with at least its two neighbours, the rim
+// beside its fillets, and whatever more the job's modelled_teeth asks for.
+// The FE check models the same (fe/gear_fe_job.cpp). `pinion`: scene.pinion
+// with its defaults.
+std::vector<int> static_check_pinion_teeth(const nlohmann::json& pinion);
+// Why, in words, for the summary.
+std::string static_check_teeth_reason(const nlohmann::json& pinion);
+
 nlohmann::json analyse_rack_pinion(const GearLayout& layout, const History& h,
                                    const Simulation& final_state);
 

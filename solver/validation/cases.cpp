@@ -221,6 +221,31 @@ json cracked_plate_job(const std::string& kind, double length, double angle_deg,
           {"discretization", {{"spacing_m", a / n}}}};
 }
 
+// Kirsch off the default d/W: 0.1 (a small hole in a wide plate) and 0.5.
+json kirsch_hole_job(double d_over_w) {
+  const double width = 0.04;
+  return {{"name", "kirsch"},
+          {"scene",
+           {{"type", "plate_with_hole"},
+            {"width_m", width},
+            {"length_m", 3.0 * width},
+            {"hole_radius_m", 0.5 * d_over_w * width}}}};
+}
+
+// Lame off the default b/a = 2: a thin ring (1.5) and a thick one (4), the
+// ends of what the bore reading is claimed for (steel, 50 MPa).
+json lame_ring_job(double b_over_a) {
+  const double a = 0.02;
+  return {{"name", "lame"},
+          {"scene",
+           {{"type", "thick_cylinder"},
+            {"inner_radius_m", a},
+            {"outer_radius_m", b_over_a * a},
+            {"pressure_Pa", 5e7},
+            {"material", {{"E_Pa", 2.1e11}, {"nu", 0.3}, {"rho_kg_m3", 7850}}}}},
+          {"output", {{"frames", 0}}}};
+}
+
 json lame_job() {
   return {{"name", "lame"}, {"scene", {{"type", "thick_cylinder"}}}};
 }
@@ -356,10 +381,44 @@ std::vector<Case> cases(bool quick) {
   out.push_back({"lame/bore_hoop_stress", "10", "hoop stress at the bore [Pa]",
                  "Lame: p (b^2 + a^2) / (b^2 - a^2)", 0.02, lame_job(),
                  relative("bore_hoop_stress_Pa", "reference_bore_hoop_stress_Pa")});
+  for (const double d_over_w : {0.1, 0.5}) {
+    if (quick && d_over_w < 0.2) continue;  // 30 s: the full variant's
+    out.push_back(
+        {std::string("kirsch/peak_hoop_stress_d_over_w_") + (d_over_w < 0.2 ? "0.1" : "0.5"), "10",
+         "peak hoop stress at the hole [Pa]",
+         "Howland's finite-width plate (Heywood: Kt_net = 2 + (1 - d/W)^3)", 0.03,
+         kirsch_hole_job(d_over_w),
+         relative("peak_hoop_stress_Pa", "reference_peak_hoop_stress_Pa")});
+  }
+  for (const double b_over_a : {1.5, 4.0}) {
+    out.push_back({std::string("lame/bore_hoop_stress_b_over_a_") + (b_over_a < 2 ? "1.5" : "4"),
+                   "10", "hoop stress at the bore [Pa]", "Lame: p (b^2 + a^2) / (b^2 - a^2)", 0.02,
+                   lame_ring_job(b_over_a),
+                   relative("bore_hoop_stress_Pa", "reference_bore_hoop_stress_Pa")});
+  }
   out.push_back({"lame/bore_displacement", "10", "radial displacement of the bore [m]",
                  "Lame, plane strain: (1 + nu) p a^2 / (E (b^2 - a^2)) [(1 - 2 nu) a + b^2 / a]",
                  0.02, lame_job(),
                  relative("bore_displacement_m", "reference_bore_displacement_m")});
+  // Linear where the physics is: the fillet peak per unit load at the final
+  // load against that at half of it (static_check.linearity), 7 kN.
+  for (const char* point : {"hpstc", "tip"}) {
+    json job = gear_fillet_job(point);
+    job["scene"]["rack"]["load_N"] = 7000.0;
+    job["output"] = {{"frames", 0}};
+    const bool tip = std::string(point) == "tip";
+    out.push_back(
+        {std::string("gear_static/fillet_linearity_") + point, "7",
+         "tension fillet peak per unit tooth-0 force at 7 kN [Pa/N]",
+         "the same at half the load (linear elasticity, load at a fixed point)", 0.01, job,
+         relative("static_check/linearity/fillet_tension_peak_per_N_at_final_load_Pa_per_N",
+                  "static_check/linearity/fillet_tension_peak_per_N_at_half_load_Pa_per_N"),
+         Case::Kind::Relative,
+         tip ? "above about 4.5 kN the tip corner's contact moves the load's line in steps: the "
+               "nominal root bending per newton rises by 5.5 % with the fillet's 5.6 % while the "
+               "contact keeps its two pairs (docs/gears.md, \"Linear where the physics is\")"
+             : ""});
+  }
   // Stress intensity factors of a crack cut in the particles, by the
   // interaction integral (docs/cracks.md). The error falls at first order
   // with the spacing: the quick variants (a/10) are about twice as far from
