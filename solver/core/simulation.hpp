@@ -9,6 +9,7 @@
 #include "solver/core/method.hpp"
 #include "solver/core/motion.hpp"
 #include "solver/core/particles.hpp"
+#include "solver/geometry/crack.hpp"
 #include "solver/neighbours/neighbour_list.hpp"
 #include "solver/physics/contact.hpp"
 #include "solver/physics/total_lagrangian.hpp"
@@ -57,6 +58,9 @@ struct Simulation {
   ContactConfig contact;       // between bodies
   NeighbourList contacts;      // contact candidates: pairs from different bodies
   ContactState contact_state;  // what the contact did in the last step
+  // Cracks in the reference configuration: the total-Lagrangian pairs that
+  // cross one are cut (physics/crack_cut.hpp).
+  std::vector<geometry::Crack> cracks;
   // Mass-proportional damping a = -damping v for quasi-static (dynamic
   // relaxation) scenes; 0 for dynamics [1/s].
   double damping_1_s = 0.0;

@@ -73,6 +73,9 @@ StressRecovery::StressRecovery(const Simulation& sim, int body,
         const double dx = p.x0[i] - at.x, dy = p.y0[i] - at.y;
         const double u = (dx * dx + dy * dy) / (R * R);
         if (u >= 1.0) continue;
+        // A particle across a crack is not seen from the point (its face is
+        // a free surface: geometry/crack.hpp).
+        if (geometry::any_crack_cuts(sim.cracks, at, {p.x0[i], p.y0[i]})) continue;
         fit.particles.push_back(i);
         w.push_back((1.0 - u) * (1.0 - u) * (1.0 - u));
       }

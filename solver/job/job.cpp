@@ -187,6 +187,7 @@ Scene build_scene(const nlohmann::json& job, const Discretization& disc) {
   if (type == "tension_strip") return scenes::build_tension_strip(in);
   if (type == "plate_with_hole") return scenes::build_plate_with_hole(in);
   if (type == "thick_cylinder") return scenes::build_thick_cylinder(in);
+  if (type == "cracked_plate") return scenes::build_cracked_plate(in);
   refuse("/scene/type", "is not a scene this build knows");
 }
 
@@ -257,6 +258,11 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads, int max_threads)
            "graded particles (a fine spacing below the bulk one) need the total-Lagrangian form: "
            "the updated-Lagrangian step has one smoothing length; set "
            "/method/formulation to \"total_lagrangian\" or give no fine spacing");
+  }
+  if (!sim.cracks.empty() && sim.method.formulation == Formulation::UpdatedLagrangian) {
+    refuse("/method/formulation",
+           "a crack is a cut in the reference neighbourhoods, which only the total-Lagrangian "
+           "form keeps: set /method/formulation to \"total_lagrangian\"");
   }
   // A total-Lagrangian run never takes an updated-Lagrangian step: free
   // those 29 arrays now rather than at integrate::initialise, before the

@@ -7,6 +7,7 @@
 #include "solver/core/setup_progress.hpp"
 #include "solver/core/simulation.hpp"
 #include "solver/physics/artificial_viscosity.hpp"
+#include "solver/physics/crack_cut.hpp"
 #include "solver/physics/kernel_correction.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 
@@ -88,6 +89,7 @@ void build_pairs(Simulation& sim, const ReferencePairs::Basis& basis) {
       rp.j = std::move(list.j);
     }
     if (graded) keep_pairs_within(p, rp.hp, K::shape_type::support, rp.rows, rp.j);
+    cut_pairs_across_cracks(p, sim.cracks, rp.rows, rp.j);  // its faces are free surfaces
     auto h_of = [&](std::uint32_t i, std::uint32_t j) { return 0.5 * (rp.hp[i] + rp.hp[j]); };
     const std::size_t n = p.n, m = rp.pairs();
     rp.w0.assign(basis.keep_w ? m : 0, 0.0);

@@ -30,6 +30,7 @@ Scene build_rack_pinion(const SceneInput& in);      // the seed paper's gear cas
 Scene build_tension_strip(const SceneInput& in);    // stability study: tensile instability
 Scene build_plate_with_hole(const SceneInput& in);  // validation.md section 10: Kirsch
 Scene build_thick_cylinder(const SceneInput& in);   // validation.md section 10: Lame
+Scene build_cracked_plate(const SceneInput& in);    // docs/cracks.md: K_I, K_II against Tada
 
 // Common helpers for builders.
 

@@ -209,6 +209,18 @@ json kirsch_job(bool quick) {
             {"hole_radius_m", quick ? 0.002 : 0.004}}}};
 }
 
+// A cracked plate (docs/cracks.md), W = 40 mm, L = 2 W, spacing a / n.
+json cracked_plate_job(const std::string& kind, double length, double angle_deg, double n) {
+  const double a = kind == "edge" ? length : 0.5 * length;
+  return {{"name", "cracked-plate-" + kind},
+          {"scene",
+           {{"type", "cracked_plate"},
+            {"width_m", 0.04},
+            {"length_m", 0.08},
+            {"crack", {{"kind", kind}, {"length_m", length}, {"angle_deg", angle_deg}}}}},
+          {"discretization", {{"spacing_m", a / n}}}};
+}
+
 // Kirsch off the default d/W: 0.1 (a small hole in a wide plate) and 0.5.
 json kirsch_hole_job(double d_over_w) {
   const double width = 0.04;
@@ -407,6 +419,26 @@ std::vector<Case> cases(bool quick) {
                "contact keeps its two pairs (docs/gears.md, \"Linear where the physics is\")"
              : ""});
   }
+  // Stress intensity factors of a crack cut in the particles, by the
+  // interaction integral (docs/cracks.md). The error falls at first order
+  // with the spacing: the quick variants (a/10) are about twice as far from
+  // the references as the full ones (edge a/40, centre a/20), hence their
+  // tolerances (measured at a/10: edge 5.6 %, centre K_I 4.5 %, K_II 2.3 %).
+  const double crack_tolerance = quick ? 0.06 : 0.03;
+  out.push_back({"cracked_plate/edge_K_I", "cracks", "K_I of an edge crack, a/W = 0.3 [Pa m^0.5]",
+                 "Tada: sigma sqrt(pi a) F(a/W), F = 1.12 - 0.231 s + 10.55 s^2 - ...",
+                 crack_tolerance, cracked_plate_job("edge", 0.012, 0.0, quick ? 10.0 : 40.0),
+                 relative("K_I_Pa_sqrt_m", "reference_K_I_Pa_sqrt_m")});
+  const json centre = cracked_plate_job("centre", 0.012, 30.0, quick ? 10.0 : 20.0);
+  out.push_back({"cracked_plate/centre_30deg_K_I", "cracks",
+                 "K_I of a centre crack at 30 deg, 2a/W = 0.3 [Pa m^0.5]",
+                 "Tada: sigma cos^2(b) sqrt(pi a) F(2a cos(b) / W)", crack_tolerance, centre,
+                 relative("K_I_Pa_sqrt_m", "reference_K_I_Pa_sqrt_m"), Case::Kind::Relative,
+                 quick ? "" : "+3.2 % at a/20 (docs/cracks.md): the 3 % needs a finer spacing"});
+  out.push_back({"cracked_plate/centre_30deg_K_II", "cracks",
+                 "K_II of a centre crack at 30 deg, 2a/W = 0.3 [Pa m^0.5]",
+                 "Tada: sigma sin(b) cos(b) sqrt(pi a) F(2a cos(b) / W)", 0.05, centre,
+                 relative("K_II_Pa_sqrt_m", "reference_K_II_Pa_sqrt_m")});
   // The gear's fillet, tooth 0 loaded alone, against ISO 6336-3 method B
   // at the same load radius (its formulas' own accuracy, about 15 %).
   for (const char* point : {"pitch", "hpstc", "tip"}) {
