@@ -420,21 +420,24 @@ std::vector<Case> cases(bool quick) {
              : ""});
   }
   // Stress intensity factors of a crack cut in the particles, by the
-  // interaction integral (docs/cracks.md). The error falls at first order
-  // with the spacing: the quick variants (a/10) are about twice as far from
-  // the references as the full ones (edge a/40, centre a/20), hence their
-  // tolerances (measured at a/10: edge 5.6 %, centre K_I 4.5 %, K_II 2.3 %).
-  const double crack_tolerance = quick ? 0.06 : 0.03;
+  // interaction integral (docs/cracks.md), at the tolerances (K_I
+  // 3 %, K_II 5 %). The error falls at first order with the spacing (the
+  // cut crack reads about half a spacing long): the edge crack takes a/20
+  // in the quick variant (+2.7 %), a/40 in the full one (+1.2 %); the 30
+  // degree centre crack's K_I is +4.5 % at a/10 and +3.2 % at a/20, so it is
+  // reported, not claimed, until the tip is refined; its K_II (+2.3 % at
+  // a/10, -0.1 % at a/20) is claimed.
   out.push_back({"cracked_plate/edge_K_I", "cracks", "K_I of an edge crack, a/W = 0.3 [Pa m^0.5]",
-                 "Tada: sigma sqrt(pi a) F(a/W), F = 1.12 - 0.231 s + 10.55 s^2 - ...",
-                 crack_tolerance, cracked_plate_job("edge", 0.012, 0.0, quick ? 10.0 : 40.0),
+                 "Tada: sigma sqrt(pi a) F(a/W), F = 1.12 - 0.231 s + 10.55 s^2 - ...", 0.03,
+                 cracked_plate_job("edge", 0.012, 0.0, quick ? 20.0 : 40.0),
                  relative("K_I_Pa_sqrt_m", "reference_K_I_Pa_sqrt_m")});
   const json centre = cracked_plate_job("centre", 0.012, 30.0, quick ? 10.0 : 20.0);
   out.push_back({"cracked_plate/centre_30deg_K_I", "cracks",
                  "K_I of a centre crack at 30 deg, 2a/W = 0.3 [Pa m^0.5]",
-                 "Tada: sigma cos^2(b) sqrt(pi a) F(2a cos(b) / W)", crack_tolerance, centre,
+                 "Tada: sigma cos^2(b) sqrt(pi a) F(2a cos(b) / W)", 0.03, centre,
                  relative("K_I_Pa_sqrt_m", "reference_K_I_Pa_sqrt_m"), Case::Kind::Relative,
-                 quick ? "" : "+3.2 % at a/20 (docs/cracks.md): the 3 % needs a finer spacing"});
+                 "+4.5 % at a/10 and +3.2 % at a/20, falling at first order (docs/cracks.md): "
+                 "the 3 % needs a finer tip"});
   out.push_back({"cracked_plate/centre_30deg_K_II", "cracks",
                  "K_II of a centre crack at 30 deg, 2a/W = 0.3 [Pa m^0.5]",
                  "Tada: sigma sin(b) cos(b) sqrt(pi a) F(2a cos(b) / W)", 0.05, centre,
