@@ -100,7 +100,8 @@ void updated_lagrangian_step(Simulation& sim, bool apart) {
 
   // A barrier is needed where a pass reads other particles' values; the
   // passes over a thread's own share continue without (Sync::Continues).
-  const Sync after_spin = torque ? Sync::Barrier : Sync::Continues;
+  // The closing kick always waits: the momentum sums read the neighbours'
+  // velocities that it changes.
   const Pass<S> step[] = {
       {"opening spin", Runs::OnCallingThread, nullptr, spin, Sync::Barrier, torque},
       {"driven rotations", Runs::OnCallingThread, nullptr, rotations, Sync::Barrier, true},
@@ -118,7 +119,7 @@ void updated_lagrangian_step(Simulation& sim, bool apart) {
       {"contact pairs", Runs::OnEveryThread, nullptr, contact_pairs, Sync::Barrier, contact},
       {"contact forces", Runs::OnEveryThread, nullptr, contact_forces, Sync::Barrier, contact},
       {"closing spin", Runs::OnOneThread, nullptr, spin, Sync::Barrier, torque},
-      {"closing kick", Runs::OnEveryThread, nullptr, closing_kick, after_spin, true},
+      {"closing kick", Runs::OnEveryThread, nullptr, closing_kick, Sync::Barrier, true},
   };
   // A particle outside the domain stops the table after the clock.
   const S sums = run_step_passes<S>(sim, step, sim.threads, outside, apart);
