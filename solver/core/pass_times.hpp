@@ -4,8 +4,9 @@
 // clock as each pass starts, on one step in kTimedEvery, so that the clock
 // costs nothing measurable (two clock reads a pass on 1 step in 16, about
 // 0.02 % of the seed paper's gear step). A pass's time is thread 0's,
-// up to the start of the next pass: its own work and its wait at the
-// barrier after it, i.e. what the pass costs the step.
+// up to the start of the next pass or the end of its parallel region: its
+// own work and its wait at the barrier after it, i.e. what the pass costs
+// the step. What no pass saw (starting the threads) has a row of its own.
 #include <cstdint>
 #include <cstring>
 #include <vector>

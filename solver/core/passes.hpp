@@ -206,6 +206,7 @@ Sums run_passes(std::span<const Pass<Sums>> passes, int threads, const std::size
     }
     std::size_t end = k;
     while (end < passes.size() && passes[end].runs != Runs::OnCallingThread) ++end;
+    clock(passes.size());  // a pass on the calling thread ends here; the fork is no pass's
     if (team_size == 1) {
       region(k, end, 0, 1);
     } else {
