@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "solver/integrate/integrator.hpp"
 #include "solver/integrate/motion.hpp"
 #include "solver/job/job.hpp"
+#include "solver/physics/contact.hpp"
 
 namespace gearsph {
 namespace {
@@ -137,6 +139,7 @@ TEST(OneRegionStep, AParticleLeavingTheDomainStopsTheStep) {
       const std::string what = e.what();
       EXPECT_NE(what.find("particle " + std::to_string(lost)), std::string::npos) << what;
       EXPECT_NE(what.find("left the domain"), std::string::npos) << what;
+      EXPECT_NE(what.find("found by the pass 'domain check'"), std::string::npos) << what;
     }
     EXPECT_EQ(sim.step, 4);
   }
@@ -154,6 +157,70 @@ TEST(OneRegionStep, TheStressPassFindsThePeakAScanFinds) {
     ASSERT_GE(scanned.particle, 0);
     EXPECT_EQ(found.particle, scanned.particle) << threads << " threads";
     EXPECT_EQ(found.von_mises, scanned.von_mises) << threads << " threads";
+  }
+}
+
+// Every pass of the table is timed under its name on one step in
+// PassTimes::kTimedEvery; a pass the scene does not have (the spins of
+// torque-driven groups) is not.
+TEST(OneRegionStep, TimesEveryPassOfTheTableByName) {
+  const Simulation sim = run(2, integrate::step);
+  const PassTimes& times = sim.pass_times;
+  const std::int64_t timed = (kSteps + PassTimes::kTimedEvery - 1) / PassTimes::kTimedEvery;
+  EXPECT_EQ(times.timed_steps(), timed);
+  std::vector<std::string> names;
+  for (const PassTime& t : times.entries()) {
+    names.push_back(t.name);
+    EXPECT_EQ(t.runs, timed) << t.name;
+    EXPECT_GE(t.seconds, 0.0) << t.name;
+  }
+  auto timed_pass = [&](const char* name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
+  for (const char* expected :
+       {"driven rotations", "kick and drift", "displacements", "domain check", "contact skin",
+        "clock", "contact list", "deformation gradient", "stress", "contact normals", "peak stress",
+        "contact pairs", "momentum sums", "accelerations", "external forces", "closing kick",
+        "threads start and join"}) {
+    EXPECT_TRUE(timed_pass(expected)) << expected;
+  }
+  // This scene's contact spreads no forces, and no group is torque-driven.
+  ASSERT_FALSE(physics::contact_smoothing(sim));
+  for (const char* absent :
+       {"contact smoothing", "contact spread", "opening spin", "closing spin"}) {
+    EXPECT_FALSE(timed_pass(absent)) << absent;
+  }
+  EXPECT_GT(times.total_seconds(), 0.0);
+}
+
+// The updated-Lagrangian table: the meshing gear on a lattice (one
+// smoothing length) into its first contact, in one region a step and with
+// each run of passes between barriers in a region of its own, the same
+// bits on any team.
+TEST(OneRegionStep, TheUpdatedLagrangianTableGivesTheSameBitsApart) {
+  auto gear = [](int threads, auto&& step) {
+    const json job = {{"scene", {{"type", "rack_pinion"}}},
+                      {"discretization", {{"particles", "lattice"}}},
+                      {"method", {{"formulation", "updated_lagrangian"}}}};
+    PreparedJob prepared = prepare_job(job, threads);
+    Simulation sim = prepared.scene.sim;
+    sim.threads = threads;
+    integrate::initialise(sim);
+    while (sim.contact_state.active_pairs == 0 && sim.step < 5000) step(sim);
+    for (int s = 0; s < 50; ++s) step(sim);
+    return sim;
+  };
+  for (int threads : {1, 2}) {
+    const Simulation a = gear(threads, integrate::step_by_terms);
+    const Simulation b = gear(threads, integrate::step);
+    ASSERT_EQ(b.method.formulation, Formulation::UpdatedLagrangian);
+    ASSERT_GT(b.contact_state.active_pairs, 0) << "no contact in 5000 steps";
+    ASSERT_EQ(a.step, b.step);
+    for (const Field& f : kFields) {
+      EXPECT_EQ(relative_difference(a.particles.*f.values, b.particles.*f.values), 0.0)
+          << f.name << ", " << threads << " threads";
+    }
+    EXPECT_EQ(a.contact_state.force_x, b.contact_state.force_x) << threads << " threads";
   }
 }
 

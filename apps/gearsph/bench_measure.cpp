@@ -11,6 +11,7 @@
 
 #include "solver/integrate/integrator.hpp"
 #include "solver/job/job.hpp"
+#include "solver/run/summary.hpp"
 
 namespace gearsph::cli::bench {
 
@@ -84,6 +85,7 @@ Timing time_steps(const json& job, int threads, std::int64_t steps) {
   Simulation& sim = pj.scene.sim;
   integrate::initialise(sim);
   integrate::step(sim);  // first touch of every scratch array
+  sim.pass_times = PassTimes{};
   const auto w0 = Clock::now();
   const double c0 = cpu_seconds();
   for (std::int64_t s = 0; s < steps; ++s) integrate::step(sim);
@@ -94,6 +96,7 @@ Timing time_steps(const json& job, int threads, std::int64_t steps) {
   t.pairs = sim.reference.entries() + sim.neighbours.entries() + sim.contacts.entries();
   t.steps = steps;
   t.dt = sim.dt;
+  t.passes = pass_timing(sim.pass_times, steps);
   const Memory after = memory_now();
   t.rss_per_particle = (after.rss - before.rss) / double(t.particles);
   t.peak_per_particle = own_peak ? (after.peak - before.rss) / double(t.particles)

@@ -36,6 +36,7 @@ struct Timing {
   std::int64_t steps = 0;
   double dt = 0, wall_s = 0, cpu_s = 0;
   double rss_per_particle = 0, peak_per_particle = 0;  // [bytes]
+  json passes;  // the step's passes, timed (summary's `timing`)
   double particle_steps_per_s() const { return double(particles) * double(steps) / wall_s; }
   double pairs_per_s() const { return double(pairs) * double(steps) / wall_s; }
   double ns_per_particle_step() const { return 1e9 * wall_s / (double(particles) * double(steps)); }

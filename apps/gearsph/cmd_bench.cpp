@@ -332,6 +332,37 @@ json throughput_row(const std::string& name, int threads, const Timing& x, doubl
           {"cpu_ns_per_particle_step", x.cpu_ns_per_particle_step()}};
 }
 
+// Where the step's time goes, pass by pass (as Box2D times its stages), for
+// each case at 1 and 2 threads: microseconds a step and share.
+void print_passes(const std::vector<ThroughputCase>& cases,
+                  const std::vector<std::array<Timing, 2>>& best, json& report) {
+  std::printf("1b. The step's passes (us a step, share; one step in %lld timed)\n",
+              static_cast<long long>(PassTimes::kTimedEvery));
+  json all = json::object();
+  for (std::size_t c = 0; c < cases.size(); ++c) {
+    std::printf("%-10s %-28s %10s %7s %10s %7s\n", cases[c].name.c_str(), "pass", "1 thread", "",
+                "2 threads", "");
+    const json& one = best[c][0].passes.at("passes");
+    const json& two = best[c][1].passes.at("passes");
+    for (const json& a : one) {
+      json b = json::object();
+      for (const json& x : two) {
+        if (x.at("name") == a.at("name")) b = x;
+      }
+      const double steps1 = double(best[c][0].steps), steps2 = double(best[c][1].steps);
+      const double us2 = b.empty() ? 0.0 : 1e6 * b.at("seconds").get<double>() / steps2;
+      const double share2 = b.empty() ? 0.0 : 100.0 * b.at("share").get<double>();
+      std::printf("%-10s %-28s %10.2f %6.1f%% %10.2f %6.1f%%\n", "",
+                  a.at("name").get<std::string>().c_str(),
+                  1e6 * a.at("seconds").get<double>() / steps1, 100.0 * a.at("share").get<double>(),
+                  us2, share2);
+    }
+    all[cases[c].name] = {{"1_thread", best[c][0].passes}, {"2_threads", best[c][1].passes}};
+  }
+  report["passes"] = all;
+  std::printf("\n");
+}
+
 void bench_throughput(const BenchOptions& o, json& report) {
   const std::vector<ThroughputCase> cases = throughput_cases(o.quick);
   const std::vector<std::array<Timing, 2>> best = best_timings(cases, o.repeats);
@@ -350,6 +381,7 @@ void bench_throughput(const BenchOptions& o, json& report) {
   }
   report["throughput"] = rows;
   std::printf("\n");
+  print_passes(cases, best, report);
 }
 
 // ------------------------------------------ 2. the oscillating plate against PySPH

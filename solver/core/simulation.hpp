@@ -9,6 +9,7 @@
 #include "solver/core/method.hpp"
 #include "solver/core/motion.hpp"
 #include "solver/core/particles.hpp"
+#include "solver/core/pass_times.hpp"
 #include "solver/geometry/crack.hpp"
 #include "solver/neighbours/neighbour_list.hpp"
 #include "solver/physics/contact.hpp"
@@ -68,6 +69,7 @@ struct Simulation {
   double load_ramp_s = 0.0;
   EnergyLedger energy;
   LargestJ2 largest_j2;
+  PassTimes pass_times;  // where the steps' time went, pass by pass (summary's timing)
 
   double h() const { return discretization.h(); }
   const Material& material_of(std::size_t i) const { return bodies[particles.body[i]].material; }

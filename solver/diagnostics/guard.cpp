@@ -17,18 +17,19 @@ struct Quantity {
 };
 
 [[noreturn]] void fail(const Simulation& sim, std::size_t i, const std::string& quantity,
-                       double value, const std::string& what) {
+                       double value, const std::string& what, const char* found_by) {
   const Particles& p = sim.particles;
   std::ostringstream msg;
   msg.precision(6);
   msg << "diverged at step " << sim.step << " (t = " << sim.time << " s): particle " << i
       << " of body '" << sim.bodies[p.body[i]].name << "' " << what << " (" << quantity << " = "
       << value << ") at (" << p.x[i] << ", " << p.y[i] << ") m";
+  if (found_by != nullptr) msg << ", found by the pass '" << found_by << "'";
   throw DivergenceError(msg.str(), sim.step, static_cast<long>(i), quantity, value);
 }
 
 // Non-finite values first: they are the cause, the escape the symptom.
-bool find_non_finite(const Simulation& sim) {
+bool find_non_finite(const Simulation& sim, const char* found_by) {
   const Particles& p = sim.particles;
   const Quantity quantities[] = {
       {"stress_xx", &p.sxx},     {"stress_yy", &p.syy},     {"stress_xy", &p.sxy},
@@ -51,30 +52,44 @@ bool find_non_finite(const Simulation& sim) {
   for (std::size_t i = 0; i < p.n; ++i) {
     for (const Quantity& q : quantities) {
       const double v = (*q.values)[i];
-      if (!std::isfinite(v)) fail(sim, i, q.name, v, "became non-finite");
+      if (!std::isfinite(v)) fail(sim, i, q.name, v, "became non-finite", found_by);
     }
-    if (!(p.rho[i] > 0.0)) fail(sim, i, "density", p.rho[i], "has non-positive density");
+    if (!(p.rho[i] > 0.0)) fail(sim, i, "density", p.rho[i], "has non-positive density", found_by);
   }
   return false;
 }
 
 }  // namespace
 
-void check_health(const Simulation& sim) {
-  find_non_finite(sim);
+void check_health(const Simulation& sim, const char* found_by) {
+  find_non_finite(sim, found_by);
   const Particles& p = sim.particles;
   for (std::size_t i = 0; i < p.n; ++i) {
     if (!sim.domain.contains(p.x[i], p.y[i])) {
       const double r = std::hypot(p.vx[i], p.vy[i]);
-      fail(sim, i, "speed", r, "left the domain");
+      fail(sim, i, "speed", r, "left the domain", found_by);
     }
   }
 }
 
-void throw_divergence(const Simulation& sim) {
-  check_health(sim);
-  // check_health throws whenever kick_drift() saw a particle outside; reaching
-  // here means the two disagree, which is a bug worth reporting plainly.
+std::size_t outside_domain(const Simulation& sim, std::size_t lo, std::size_t hi) {
+  // NaN fails every comparison, so a non-finite position counts as outside.
+  const Box box = sim.domain;
+  const double *x = sim.particles.x.data(), *y = sim.particles.y.data();
+  std::size_t outside = 0;
+#pragma omp simd reduction(+ : outside)
+  for (std::size_t i = lo; i < hi; ++i) {
+    const bool inside =
+        x[i] >= box.x_min && x[i] <= box.x_max && y[i] >= box.y_min && y[i] <= box.y_max;
+    outside += inside ? 0 : 1;
+  }
+  return outside;
+}
+
+void throw_divergence(const Simulation& sim, const char* found_by) {
+  check_health(sim, found_by);
+  // check_health throws whenever the domain check saw a particle outside;
+  // reaching here means the two disagree, which is a bug worth reporting plainly.
   throw DivergenceError("divergence guard: a particle left the domain but none was found", sim.step,
                         -1, "position", 0.0);
 }

@@ -29,12 +29,12 @@ class DivergenceError : public std::runtime_error {
 namespace integrate {
 // Prepares neighbour lists and the rates at t = 0 (call once before step()).
 void initialise(Simulation& sim);
-// Advances by sim.dt. Throws DivergenceError. A total-Lagrangian step
-// without torque-driven groups runs its forces, loads, contact and closing
-// kick in one parallel region (threads hand over 7 times a step, not 15).
+// Advances by sim.dt: the method's table of passes (step_total_lagrangian.cpp,
+// step_updated_lagrangian.cpp) in as few parallel regions as its barriers
+// allow. Throws DivergenceError naming the pass that found the divergence.
 void step(Simulation& sim);
-// The same step with each term in a parallel region of its own: the path of
-// the other scenes, and the reference the one-region step is tested against
+// The same table with each run of passes between two barriers in a parallel
+// region of its own: the reference the one-region step is tested against
 // (tests/test_one_region_step.cpp).
 void step_by_terms(Simulation& sim);
 }  // namespace integrate

@@ -1,7 +1,5 @@
 #include "solver/integrate/motion.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -203,67 +201,17 @@ void place_rotations(Simulation& sim, double dt) {
   }
 }
 
-void kick_drift_particles(Simulation& sim, double dt, std::size_t lo, std::size_t hi,
-                          Drift& drift) {
-  Particles& p = sim.particles;
-  const std::size_t n = p.n;
-  const Kinematics k(p);
-  const double t = sim.time + dt;
-  for_each_motion_run(
-      p, sim.motions.data(), lo, hi,
-      [&](std::size_t a, std::size_t b, const Motion& m) { open_run(k, m, a, b, dt, t); });
-  // The total-Lagrangian F loop reads displacements u = x - X beside V0
-  // (one line a neighbour, ReferencePairs::u); written here, where x is at
-  // hand.
-  if (sim.reference.u.size() == 4 * n) {
-    double* const u = sim.reference.u.data();
-#pragma omp simd
-    for (std::size_t i = lo; i < hi; ++i) {
-      u[4 * i] = k.x[i] - k.x0[i];
-      u[4 * i + 1] = k.y[i] - k.y0[i];
-    }
+void spin_groups(Simulation& sim, double dt_half) {
+  for (std::size_t k = 0; k < sim.motions.size(); ++k) {
+    if (sim.motions[k].torque_driven) spin(sim, k, dt_half);
   }
-  // NaN fails every comparison, so a non-finite position counts as outside.
-  const Box box = sim.domain;
-  std::size_t outside = 0;
-#pragma omp simd reduction(+ : outside)
-  for (std::size_t i = lo; i < hi; ++i) {
-    const bool inside =
-        k.x[i] >= box.x_min && k.x[i] <= box.x_max && k.y[i] >= box.y_min && k.y[i] <= box.y_max;
-    outside += inside ? 0 : 1;
-  }
-  drift.outside += outside;
-  // The contact list's skin check, here where the new positions are at hand.
-  if (sim.contacts.built_for(n))
-    drift.contacts_moved += sim.contacts.moved_too_far(lo, hi, k.x, k.y);
 }
 
-Drift kick_drift(Simulation& sim, double dt) {
-  for (std::size_t k = 0; k < sim.motions.size(); ++k) {
-    if (sim.motions[k].torque_driven) spin(sim, k, 0.5 * dt);
-  }
-  place_rotations(sim, dt);
-  const std::size_t n = sim.particles.n;
-  // Total-Lagrangian runs move the rows each thread owns in the momentum
-  // pass and the accelerations (RowChunks): what a thread writes in the step
-  // stays in its own cache.
-  const RowChunks& chunks = sim.reference.momentum_chunks;
-  const bool by_chunks = chunks.chunks() == std::max(1, sim.threads);
-  std::size_t outside = 0, contacts_moved = 0;
-#pragma omp parallel num_threads(sim.threads) reduction(+ : outside, contacts_moved)
-  {
-    Drift d;
-    if (by_chunks) {
-      for_my_chunks(
-          chunks, [&](int c) { kick_drift_particles(sim, dt, chunks.begin(c), chunks.end(c), d); });
-    } else {
-      const std::size_t team = omp_get_num_threads(), me = omp_get_thread_num();
-      kick_drift_particles(sim, dt, n * me / team, n * (me + 1) / team, d);
-    }
-    outside += d.outside;
-    contacts_moved += d.contacts_moved;
-  }
-  return {outside, contacts_moved};
+void kick_drift_particles(Simulation& sim, double dt, double t, std::size_t lo, std::size_t hi) {
+  const Kinematics k(sim.particles);
+  for_each_motion_run(
+      sim.particles, sim.motions.data(), lo, hi,
+      [&](std::size_t a, std::size_t b, const Motion& m) { open_run(k, m, a, b, dt, t); });
 }
 
 bool torque_driven(const Simulation& sim) {
@@ -284,22 +232,13 @@ KickPowers closing_kick_particles(Simulation& sim, double dt_half, std::size_t l
   return power;
 }
 
-KickPowers closing_kick(Simulation& sim, double dt_half) {
-  for (std::size_t k = 0; k < sim.motions.size(); ++k) {
-    if (sim.motions[k].torque_driven) spin(sim, k, dt_half);
-  }
-  const std::size_t n = sim.particles.n;
-  KickPowers power;
-#pragma omp parallel num_threads(sim.threads) reduction(+ : power)
-  {
-    const std::size_t team = omp_get_num_threads(), me = omp_get_thread_num();
-    power += closing_kick_particles(sim, dt_half, n * me / team, n * (me + 1) / team);
-  }
+double torque_drive_power(const Simulation& sim) {
   // A torque-driven group is also accelerated along its rotation: the drive
   // supplies that too (in all, the applied torque's power less what goes
   // into the attached inertia, which is not among the particles' energy).
+  double power = 0.0;
   for (const Motion& m : sim.motions) {
-    if (m.torque_driven) power.drive += m.group_inertia * m.alpha * m.omega;
+    if (m.torque_driven) power += m.group_inertia * m.alpha * m.omega;
   }
   return power;
 }

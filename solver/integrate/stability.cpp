@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "solver/core/passes.hpp"
 #include "solver/core/setup_progress.hpp"
 #include "solver/core/simulation.hpp"
 #include "solver/neighbours/row_chunks.hpp"
@@ -34,15 +35,16 @@ bool integrated(const Simulation& sim, std::size_t i, int component) {
 double squared_norm(const std::vector<double>& ux, const std::vector<double>& uy,
                     std::vector<double>& block_sums, int threads) {
   const std::size_t n = ux.size();
-  const long blocks = static_cast<long>(block_sums.size());
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (long b = 0; b < blocks; ++b) {
-    double s = 0.0;
-    for (std::size_t i = b * kNormBlock; i < std::min(n, (b + 1) * kNormBlock); ++i) {
-      s += ux[i] * ux[i] + uy[i] * uy[i];
+  const std::size_t blocks = block_sums.size();
+  over_shares<int>("norm", blocks, threads, [&](std::size_t lo, std::size_t hi, int&) {
+    for (std::size_t b = lo; b < hi; ++b) {
+      double s = 0.0;
+      for (std::size_t i = b * kNormBlock; i < std::min(n, (b + 1) * kNormBlock); ++i) {
+        s += ux[i] * ux[i] + uy[i] * uy[i];
+      }
+      block_sums[b] = s;
     }
-    block_sums[b] = s;
-  }
+  });
   double sum = 0.0;
   for (double s : block_sums) sum += s;
   return sum;
@@ -74,17 +76,19 @@ double largest_eigenvalue(Simulation& sim, Apply&& apply) {
     setup_progress("finding the stable time step", double(it) / kIterations);
     const double norm_u = std::sqrt(squared_norm(ux, uy, block_sums, sim.threads));
     if (norm_u == 0.0) return 0.0;
-#pragma omp parallel for num_threads(sim.threads) schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      ux[i] /= norm_u;
-      uy[i] /= norm_u;
-    }
+    over_shares<int>("normalise", n, sim.threads, [&](std::size_t lo, std::size_t hi, int&) {
+      for (std::size_t i = lo; i < hi; ++i) {
+        ux[i] /= norm_u;
+        uy[i] /= norm_u;
+      }
+    });
     apply(ux, uy);
-#pragma omp parallel for num_threads(sim.threads) schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      ux[i] = free_x[i] ? ax[i] : 0.0;
-      uy[i] = free_y[i] ? ay[i] : 0.0;
-    }
+    over_shares<int>("free components", n, sim.threads, [&](std::size_t lo, std::size_t hi, int&) {
+      for (std::size_t i = lo; i < hi; ++i) {
+        ux[i] = free_x[i] ? ax[i] : 0.0;
+        uy[i] = free_y[i] ? ay[i] : 0.0;
+      }
+    });
     lambda = std::sqrt(squared_norm(ux, uy, block_sums, sim.threads));
   }
   return lambda;
@@ -239,17 +243,17 @@ double viscous_damping_rate(Simulation& sim, const ArtificialViscosity& av) {
     }
   };
   return largest_eigenvalue(sim, [&](const std::vector<double>& vx, const std::vector<double>& vy) {
-#pragma omp parallel num_threads(sim.threads)
-    {
-#pragma omp for schedule(static)
-      for (int c = 0; c < kDampingChunks; ++c) chunk_pairs(c, vx, vy);
-        // (the loop's closing barrier: every window is written)
-#pragma omp for schedule(static)
-      for (int c = 0; c < kDampingChunks; ++c) {
-        double* const sums[2] = {p.ax.data(), p.ay.data()};
-        chunks.add_spills(c, sums, 2);
-      }
-    }
+    auto pairs = [&](int c, int, int&) { chunk_pairs(c, vx, vy); };
+    auto spills = [&](int c, int, int&) {
+      double* const sums[2] = {p.ax.data(), p.ay.data()};
+      chunks.add_spills(c, sums, 2);
+    };
+    const Pass<int> passes[] = {
+        {"damping pairs", Runs::OverChunks, &chunks, pairs, Sync::Barrier, true},
+        {"damping spills", Runs::OverChunks, &chunks, spills, Sync::Barrier, true},
+    };
+    constexpr std::size_t kNeverStop = 0;
+    run_passes<int>(passes, sim.threads, kNeverStop);
   });
 }
 

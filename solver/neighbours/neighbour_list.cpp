@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "solver/core/particles.hpp"
+#include "solver/core/passes.hpp"
 
 namespace gearsph {
 
@@ -44,23 +45,25 @@ void NeighbourList::build(const Particles& p, double cutoff, PairSelection selec
   };
 
   count_.assign(n, 0);
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    std::uint32_t c = 0;
-    scan(i, [&](std::uint32_t) { ++c; });
-    count_[i] = c;
-  }
+  over_shares<int>("neighbour counts", n, threads, [&](std::size_t lo, std::size_t hi, int&) {
+    for (std::size_t i = lo; i < hi; ++i) {
+      std::uint32_t c = 0;
+      scan(i, [&](std::uint32_t) { ++c; });
+      count_[i] = c;
+    }
+  });
   rows.resize(n + 1);
   rows[0] = 0;
   for (std::size_t i = 0; i < n; ++i) rows[i + 1] = rows[i] + count_[i];
   j.resize(rows[n]);
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    std::uint32_t at = rows[i];
-    scan(i, [&](std::uint32_t k) { j[at++] = k; });
-    // Sorted rows: deterministic order and forward memory access.
-    std::sort(j.begin() + rows[i], j.begin() + rows[i + 1]);
-  }
+  over_shares<int>("neighbour rows", n, threads, [&](std::size_t lo, std::size_t hi, int&) {
+    for (std::size_t i = lo; i < hi; ++i) {
+      std::uint32_t at = rows[i];
+      scan(i, [&](std::uint32_t k) { j[at++] = k; });
+      // Sorted rows: deterministic order and forward memory access.
+      std::sort(j.begin() + rows[i], j.begin() + rows[i + 1]);
+    }
+  });
   dw_r.assign(reference ? 0 : j.size(), 0.0);
   if (!w.empty()) w.assign(j.size(), 0.0);
   x_built_.assign(p.x.begin(), p.x.end());

@@ -15,8 +15,6 @@
 //
 // No locks, no atomics, and with one thread every sum is formed in the same
 // order as a loop over full rows would form it.
-#include <omp.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -80,14 +78,5 @@ class RowChunks {
   Column<double> spill_;               // written by one thread, added by another
   int components_ = 0;
 };
-
-// Inside a parallel region: runs pass(c) for the calling thread's chunks,
-// c = thread, thread + team, ..., so that every chunk is done whatever team
-// size the runtime grants.
-template <class Pass>
-void for_my_chunks(const RowChunks& chunks, Pass&& pass) {
-  const int team = omp_get_num_threads();
-  for (int c = omp_get_thread_num(); c < chunks.chunks(); c += team) pass(c);
-}
 
 }  // namespace gearsph

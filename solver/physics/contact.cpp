@@ -5,10 +5,10 @@
 #include <limits>
 #include <utility>
 
-#include <omp.h>
-
+#include "solver/core/passes.hpp"
 #include "solver/core/simulation.hpp"
 #include "solver/physics/contact_hertz.hpp"
+#include "solver/physics/contact_law.hpp"
 #include "solver/physics/contact_near_field.hpp"
 #include "solver/physics/contact_seed_penalty.hpp"
 #include "solver/physics/contact_smoothing.hpp"
@@ -39,23 +39,6 @@ bool is_penalty(ContactModel m) {
 }
 
 namespace {
-
-// Plane-strain contact modulus of two materials (Johnson 1985, eq. 4.23 form).
-double contact_modulus(const Material& a, const Material& b) {
-  return 1.0 / ((1.0 - a.nu * a.nu) / a.E + (1.0 - b.nu * b.nu) / b.E);
-}
-
-// K = 2 (1 - nu^2) / (pi E) of a half-plane (contact_near_field.hpp).
-double plane_strain_compliance(const Material& m) {
-  return 2.0 * (1.0 - m.nu * m.nu) / (3.141592653589793 * m.E);
-}
-
-// The turn of a normal for the energy's derivative in it [rad].
-constexpr double kTurn = 1e-6;
-
-// Outline particles face each other when their normals are within 45
-// degrees of opposed: cos(135 deg).
-constexpr double kFacingCosine = 0.7071067811865476;
 
 // Most partners a particle has across a flat interface within r0 = dx on a
 // square lattice (three: straight across and the two diagonals are at
@@ -89,12 +72,21 @@ double contact_time_step_limit(const Simulation& sim) {
       const double va = lightest(sim.bodies[a]), vb = lightest(sim.bodies[b]);
       const double vol = 2.0 * va * vb / (va + vb);
       // Stiffness at the deepest overlap we tolerate (r0/2) for Hertz; the
-      // linear law has one stiffness.
-      const bool near = config.model == ContactModel::Surface && config.near_field;
-      const double k = config.model == ContactModel::Hertz
-                           ? hertz_penalty(e_star, dx, 0.5 * r0).stiffness
-                       : near ? kStiffSpring * e_star * vol / (dx * dx)
-                              : seed_penalty(config.D, e_star, vol, r0, 0.0).stiffness;
+      // linear law has one stiffness, the near-field law a bound.
+      const ContactLaw law = contact_law(config);
+      const bool near = law == ContactLaw::NearField;
+      double k = 0.0;
+      switch (law) {
+        case ContactLaw::Hertz:
+          k = hertz_penalty(e_star, dx, 0.5 * r0).stiffness;
+          break;
+        case ContactLaw::NearField:
+          k = kStiffSpring * e_star * vol / (dx * dx);
+          break;
+        case ContactLaw::Seed:
+          k = seed_penalty(config.D, e_star, vol, r0, 0.0).stiffness;
+          break;
+      }
       const double inv_m = 1.0 / (ma.rho0 * va) + 1.0 / (mb.rho0 * vb);
       // The surface law's lateral hat weights add up to one over a row of
       // partners: one partner's stiffness at most (the near-field law's
@@ -382,222 +374,13 @@ void turn_contact_normals(Simulation& sim, std::size_t lo, std::size_t hi) {
   }
 }
 
-namespace {
-// Outline particle i's outward normal turned by its receivers' best-fit
-// rotation (contact_smoothing.hpp), from its smoothed point's sums; without
-// receivers to turn with, its reference normal.
-void smoothed_normal(const Particles& p, const SmoothedPoint& s, std::size_t i, double& nx,
-                     double& ny) {
-  const double r = std::sqrt(s.c * s.c + s.s * s.s);
-  const double c = r > 0.0 ? s.c / r : 1.0, sn = r > 0.0 ? s.s / r : 0.0;
-  turn_normal(c, sn, p.surf_nx[i], p.surf_ny[i], nx, ny);
-}
-}  // namespace
-
-void contact_pairs(Simulation& sim, double dt, ContactTally& tally) {
+void turn_contact_normals_by_rot(Simulation& sim, std::size_t lo, std::size_t hi) {
   Particles& p = sim.particles;
   const NeighbourList& nl = sim.contacts;
-  const ContactConfig& config = sim.contact;
-  const bool surface = config.model == ContactModel::Surface;
-  const bool smooth = contact_smoothing(sim);
-  const ContactState& st = sim.contact_state;
-  const double* spacing = p.spacing.data();
-  const double* normal_x = sim.contact_state.normal_x.data();
-  const double* normal_y = sim.contact_state.normal_y.data();
-  const std::uint32_t* candidates = sim.contact_state.candidates.data();
-  const std::size_t count = sim.contact_state.candidates.size();
-  // Every candidate's smoothed point once (the list is symmetric: every
-  // partner is a candidate), then the pairs read them: computed per pair,
-  // the spread cost 10-15 % of the gear's step.
-  SmoothedPoint* smoothed = smooth ? sim.contact_state.smoothed.data() : nullptr;
-  if (smooth) {
-#pragma omp for schedule(static)
-    for (std::size_t a = 0; a < count; ++a) {
-      smoothed[candidates[a]] = smoothed_point(p, st, candidates[a]);
-    }
-  }
-#pragma omp for schedule(static) nowait
-  for (std::size_t a = 0; a < count; ++a) {
-    const std::size_t i = candidates[a];
-    const Material& mi = sim.material_of(i);
-    const double vi = p.mass[i] / p.rho[i];
-    // Where i touches (contact_smoothing.hpp): its smoothed point, or itself.
-    const SmoothedPoint si = smooth ? smoothed[i] : SmoothedPoint{p.x[i], p.y[i], p.vx[i], p.vy[i]};
-    double fx = 0.0, fy = 0.0;
-    double normal_moment = 0.0;  // -dE/dtheta_i of i's surface pairs through its normal
-    // i's normal turned by its receivers' rotation (below), once for its pairs.
-    double smooth_nix = 0.0, smooth_niy = 0.0;
-    if (surface && smooth && std::isfinite(p.surf_depth[i])) {
-      smoothed_normal(p, si, i, smooth_nix, smooth_niy);
-    }
-    for (std::uint32_t k = nl.rows[i]; k < nl.rows[i + 1]; ++k) {
-      const std::uint32_t j = nl.j[k];
-      const SmoothedPoint sj =
-          smooth ? smoothed[j] : SmoothedPoint{p.x[j], p.y[j], p.vx[j], p.vy[j]};
-      const double dxij = si.x - sj.x, dyij = si.y - sj.y;
-      // The pair's spacing: the coarser of the two, so that the hat weight
-      // of a fine particle spans its coarse partners' row (graded particles;
-      // a lattice's dx otherwise). Symmetric in i and j.
-      const double dx = std::max(spacing[i], spacing[j]), r0 = config.r0_over_dx * dx;
-      double nx, ny, overlap, weight = 1.0;
-      double nix = 0.0, niy = 0.0, njx = 0.0, njy = 0.0;  // the surface pair's normals
-      SurfacePair turned[2];  // with i's normal turned by -+kTurn (smoothing)
-      double tangent_x = 0.0, tangent_y = 0.0, dweight = 0.0;
-      if (surface) {
-        // True-surface gap (contact_surface.hpp).
-        if (!std::isfinite(p.surf_depth[i]) || !std::isfinite(p.surf_depth[j])) continue;
-        // Two particles on their outlines (body-fitted, depth 0) touch only
-        // within a spacing of each other and with their outward normals
-        // within 45 degrees of opposed: a rack's tip corner beside a pinion
-        // flank passes the half-plane test of surface_pair from a spacing
-        // away (normals 134 degrees apart), and pressed the teeth apart
-        // where the neighbour's flank had 0.1 mm of play.
-        const bool outline = p.surf_depth[i] == 0.0 && p.surf_depth[j] == 0.0;
-        // Smoothed (unresolved) contacts of curved outlines touch at one
-        // point between the particles (contact_surface.hpp), whose hats
-        // reach a spacing each way.
-        const bool curved =
-            outline && smooth && st.smooth_surface[i] && st.smooth_surface[j] &&
-            curved_pair(p.surf_curvature[i], p.surf_curvature[j], spacing[i], spacing[j]);
-        const double apart = curved ? spacing[i] + spacing[j] : dx;
-        if (outline && (dxij * dxij + dyij * dyij >= apart * apart ||
-                        normal_x[i] * normal_x[j] + normal_y[i] * normal_y[j] > -kFacingCosine)) {
-          continue;
-        }
-        // The normals: with the smoothing, turned by each particle's
-        // receivers' rotation (its smoothed point's), a function of their
-        // positions, so that the pair's energy has a gradient the smoothing's
-        // couple applies (below); otherwise by the material's rotation.
-        if (smooth) {
-          nix = smooth_nix;
-          niy = smooth_niy;
-          smoothed_normal(p, sj, j, njx, njy);
-        } else {
-          nix = normal_x[i];
-          niy = normal_y[i];
-          njx = normal_x[j];
-          njy = normal_y[j];
-        }
-        // A tangent-line pair measures from the parabola of a particle
-        // whose surface is one (smoothed, away from corners).
-        const double sag_i = outline && smooth && st.smooth_surface[i] ? p.surf_curvature[i] : 0.0;
-        const double sag_j = outline && smooth && st.smooth_surface[j] ? p.surf_curvature[j] : 0.0;
-        // The pair's geometry with i's normal (ax, ay), seen from i.
-        auto geometry = [&](double ax, double ay) {
-          return curved ? curved_surface_pair(dxij, dyij, ax, ay, njx, njy, p.surf_curvature[i],
-                                              p.surf_curvature[j], spacing[i], spacing[j],
-                                              p.surf_curvature_rate[i], p.surf_curvature_rate[j])
-                        : surface_pair(dxij, dyij, ax, ay, njx, njy, p.surf_depth[i],
-                                       p.surf_depth[j], dx, outline, sag_i, sag_j);
-        };
-        // Evaluated in one order for both ends, so that F_ji = -F_ij to the bit.
-        SurfacePair sp;
-        if (i > j) {
-          sp = curved ? curved_surface_pair(-dxij, -dyij, njx, njy, nix, niy, p.surf_curvature[j],
-                                            p.surf_curvature[i], spacing[j], spacing[i],
-                                            p.surf_curvature_rate[j], p.surf_curvature_rate[i])
-                      : surface_pair(-dxij, -dyij, njx, njy, nix, niy, p.surf_depth[j],
-                                     p.surf_depth[i], dx, outline, sag_j, sag_i);
-          sp.nx = -sp.nx;
-          sp.ny = -sp.ny;
-          sp.tx = -sp.tx;
-          sp.ty = -sp.ty;
-        } else {
-          sp = geometry(nix, niy);
-        }
-        if (!sp.active) continue;
-        if (smooth) {
-          // The geometry with i's normal turned by -+kTurn, for the energy's
-          // derivative in i's receivers' rotation (below).
-          for (int side = 0; side < 2; ++side) {
-            const double turn = side ? kTurn : -kTurn, c = std::cos(turn), sn = std::sin(turn);
-            turned[side] = geometry(c * nix - sn * niy, sn * nix + c * niy);
-          }
-        }
-        nx = sp.nx;
-        ny = sp.ny;
-        overlap = sp.overlap;
-        weight = sp.weight;
-        tangent_x = sp.tx;
-        tangent_y = sp.ty;
-        dweight = sp.dweight;
-      } else {
-        const double r2 = dxij * dxij + dyij * dyij;
-        if (r2 >= r0 * r0) continue;
-        const double r = std::sqrt(r2);
-        overlap = r0 - r;
-        nx = dxij / r;
-        ny = dyij / r;
-      }
-      const Material& mj = sim.material_of(j);
-      const double e_star = contact_modulus(mi, mj);
-      const double vj = p.mass[j] / p.rho[j];
-      const double vol = 2.0 * vi * vj / (vi + vj);
-      const NearField nf =
-          surface && config.near_field
-              ? near_field(e_star, plane_strain_compliance(mi), plane_strain_compliance(mj),
-                           st.log_moment[i], st.log_moment[j],
-                           p.surf_hertz_curvature[i] + p.surf_hertz_curvature[j],
-                           kStiffSpring * e_star * vol / (dx * dx))
-              : NearField{};
-      auto law_of = [&](double ov) {
-        if (config.model == ContactModel::Hertz) return hertz_penalty(e_star, dx, ov);
-        if (surface && config.near_field) return near_field_law(nf, ov);
-        return seed_penalty(config.D, e_star, vol, surface ? dx : r0, ov);
-      };
-      PairLaw law = law_of(overlap);
-      if (surface && smooth) {
-        // The pair's energy w Phi depends on i's normal, which turns with
-        // i's receivers: its derivative in that angle (a central difference
-        // of the geometry, Phi linearised about the overlap) goes to the
-        // couple, so that the contact's forces are the gradient of its
-        // energy also while the bodies turn.
-        auto energy = [&](const SurfacePair& q) {
-          return q.active ? q.weight * (law.energy + law.force * (q.overlap - overlap)) : 0.0;
-        };
-        normal_moment -= (energy(turned[1]) - energy(turned[0])) / (2.0 * kTurn);
-      }
-      const double phi = law.energy;  // before the weight, for its gradient below
-      law.force *= weight;
-      law.stiffness *= weight;
-      law.energy *= weight;
-      // Dashpot on the normal approach speed, as a fraction of critical
-      // damping of the pair oscillator; the total never pulls (no adhesion).
-      const double vn = (si.vx - sj.vx) * nx + (si.vy - sj.vy) * ny;  // > 0 separating
-      const double m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
-      const double damper = 2.0 * config.damping_ratio * std::sqrt(law.stiffness * m_eff);
-      const double f = std::max(0.0, law.force - damper * vn);
-      // The weight's own gradient: the energy's tangential part as the
-      // partners slide along each other (contact_surface.hpp).
-      const double ft = -phi * dweight;
-      fx += f * nx + ft * tangent_x;
-      fy += f * ny + ft * tangent_y;
-      // Each pair is seen from both ends: count its energy and the pair once.
-      if (i < j) {
-        ++tally.active;
-        tally.stored += law.energy;
-        tally.dissipated += (f - law.force) * -vn * dt;  // dashpot power times dt
-      }
-      tally.deepest = std::max(tally.deepest, overlap);
-    }
-    p.contact_ax[i] = fx / p.mass[i];
-    p.contact_ay[i] = fy / p.mass[i];
-    if (smooth) {
-      // The force acts at the smoothed point, the turned offset o away from
-      // the receivers' weighted centroid; its moment o x f does work as the
-      // receivers turn, and is spread as M dtheta/dx_k: with it the spread
-      // force is the gradient of the penalty energy (contact_smoothing.hpp).
-      const double r2 = si.c * si.c + si.s * si.s;
-      const double moment = r2 > 0.0 ? (si.ox * fy - si.oy * fx + normal_moment) / r2 : 0.0;
-      ContactState& out = sim.contact_state;
-      out.couple_c[i] = moment * si.c;
-      out.couple_s[i] = moment * si.s;
-    }
-    const int b = p.body[i];
-    if (b < ContactTally::kMaxBodies) {
-      tally.fx[b] += fx;
-      tally.fy[b] += fy;
-    }
+  for (std::size_t i = lo; i < hi; ++i) {
+    // Only particles with candidates need their normal (most have none).
+    if (nl.rows[i] == nl.rows[i + 1] || !std::isfinite(p.surf_depth[i])) continue;
+    turn_surface_normal(p, sim.contact_state, i, std::cos(p.rot[i]), std::sin(p.rot[i]));
   }
 }
 
@@ -623,30 +406,28 @@ void contact_forces(Simulation& sim, double dt) {
     return;
   }
   prepare_contact(sim);
-  Particles& p = sim.particles;
-  const NeighbourList& nl = sim.contacts;
+  const std::size_t n = sim.particles.n;
   // Total-Lagrangian stress passes have turned the normals already.
   const bool turn = sim.contact.model == ContactModel::Surface &&
                     sim.method.formulation == Formulation::UpdatedLagrangian;
-  const std::size_t n = p.n;
-  ContactTally tally;
-#pragma omp parallel num_threads(sim.threads) reduction(+ : tally)
-  {
-    if (turn) {
-#pragma omp for schedule(static)
-      for (std::size_t i = 0; i < n; ++i) {
-        // Only particles with candidates need their normal (most have none).
-        if (nl.rows[i] == nl.rows[i + 1] || !std::isfinite(p.surf_depth[i])) continue;
-        turn_surface_normal(p, sim.contact_state, i, std::cos(p.rot[i]), std::sin(p.rot[i]));
-      }
-    }
-    contact_pairs(sim, dt, tally);
-    // The pair loop splits the candidates, this loop all particles.
-#pragma omp barrier
-    const std::size_t team = omp_get_num_threads(), me = omp_get_thread_num();
-    add_contact_accelerations(sim, n * me / team, n * (me + 1) / team);
-  }
-  record_contact(sim, tally);
+  auto normals = [&](int me, int team, ContactTally&) {
+    const Share part = share(n, me, team);
+    turn_contact_normals_by_rot(sim, part.lo, part.hi);
+  };
+  auto points = [&](int me, int team, ContactTally&) { smooth_contact_points(sim, me, team); };
+  auto pairs = [&](int me, int team, ContactTally& t) { contact_pairs(sim, dt, me, team, t); };
+  auto accelerations = [&](int me, int team, ContactTally&) {
+    const Share part = share(n, me, team);
+    add_contact_accelerations(sim, part.lo, part.hi);
+  };
+  const Pass<ContactTally> passes[] = {
+      {"contact normals", Runs::OnEveryThread, nullptr, normals, Sync::Barrier, turn},
+      {"contact smoothing", Runs::OnEveryThread, nullptr, points, Sync::Continues, true},
+      {"contact pairs", Runs::OnEveryThread, nullptr, pairs, Sync::Barrier, true},
+      {"contact forces", Runs::OnEveryThread, nullptr, accelerations, Sync::Barrier, true},
+  };
+  constexpr std::size_t kNeverStop = 0;
+  record_contact(sim, run_passes<ContactTally>(passes, sim.threads, kNeverStop));
 }
 
 }  // namespace physics

@@ -108,12 +108,13 @@ bool is_penalty(ContactModel m);
 double contact_time_step_limit(const Simulation& sim);
 
 // Adds contact accelerations to ext_ax/ext_ay (which the caller zeroed) and
-// fills sim.contact_state; dissipated energy goes to the ledger. Its own
-// parallel region; the time step calls the pieces below inside its region.
+// fills sim.contact_state; dissipated energy goes to the ledger. The
+// passes below as a table of their own (the first step's forces, tests);
+// the time step's tables run them among theirs.
 void contact_forces(Simulation& sim, double dt);
 
-// What one thread's share of the contact pairs did; summed over threads by
-// an OpenMP reduction (`reduction(+ : tally)`, declared below).
+// What one thread's share of the contact pairs did; summed over threads in
+// thread order by the executor (core/passes.hpp).
 struct ContactTally {
   static constexpr int kMaxBodies = 8;  // bodies beyond this get no force total
   std::int64_t active = 0;
@@ -121,8 +122,6 @@ struct ContactTally {
   double fx[kMaxBodies] = {}, fy[kMaxBodies] = {};
   ContactTally& operator+=(const ContactTally& o);
 };
-#pragma omp declare reduction(+ : ContactTally : omp_out += omp_in) \
-    initializer(omp_priv = ContactTally{})
 
 // The mask for the contact list's build (NeighbourList::build): with the
 // surface model only particles with a surface within reach may pair (an
@@ -150,11 +149,18 @@ inline void turn_surface_normal(const Particles& p, ContactState& state, std::si
 // contact candidates, turned by the rotation of the polar decomposition of
 // their deformation gradient F = R U (after the stress pass has set F).
 void turn_contact_normals(Simulation& sim, std::size_t lo, std::size_t hi);
-// The pair loop, as a worksharing loop over the candidates without its
-// closing barrier (call it from inside a parallel region, after
-// prepare_contact): contact_ax, contact_ay of every candidate, and the
-// calling thread's share of the totals. Reads positions, velocities,
-// density and the turned normals.
+// Updated-Lagrangian runs: the normals of particles lo .. hi that have
+// contact candidates, turned by their material rotation angle rot.
+void turn_contact_normals_by_rot(Simulation& sim, std::size_t lo, std::size_t hi);
+// With surface smoothing, the smoothed point of share `index` of `of` of the
+// candidates (after prepare_contact), read by every candidate's pairs: a
+// barrier must follow before contact_pairs (contact_pairs.cpp).
+void smooth_contact_points(Simulation& sim, int index, int of);
+// The pair loop over share `index` of `of` of the candidates: contact_ax,
+// contact_ay of each, and this share of the totals. Reads positions,
+// velocities, density, the turned normals and the smoothed points.
+void contact_pairs(Simulation& sim, double dt, int index, int of, ContactTally& tally);
+// Both of the above over every candidate, on the calling thread.
 void contact_pairs(Simulation& sim, double dt, ContactTally& tally);
 // Contact accelerations of particles lo .. hi added to ext_ax/ext_ay: each
 // particle's own (contact_ax), or with surface smoothing the share of the

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "solver/core/passes.hpp"
 #include "solver/core/simulation.hpp"
 #include "solver/physics/artificial_stress.hpp"
 #include "solver/physics/artificial_viscosity.hpp"
@@ -12,7 +13,7 @@ namespace gearsph::physics {
 namespace {
 
 template <bool kQuadratic, bool kArtificialStress, bool kHourglass>
-void momentum_loop(Simulation& sim, double dt, double inv_w_dx) {
+double momentum_loop(Simulation& sim, double inv_w_dx, std::size_t lo, std::size_t hi) {
   Particles& p = sim.particles;
   const NeighbourList& nl = sim.neighbours;
   const ArtificialViscosity& av = sim.method.viscosity;
@@ -20,11 +21,8 @@ void momentum_loop(Simulation& sim, double dt, double inv_w_dx) {
   const double hg = sim.method.hourglass.coefficient;
   const double h = sim.h();
   const double eta2 = (av.eta_over_h * h) * (av.eta_over_h * h);
-  const std::size_t n = p.n;
   double dissipated = 0.0;
-
-#pragma omp parallel for num_threads(sim.threads) schedule(static) reduction(+ : dissipated)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = lo; i < hi; ++i) {
     const double xi = p.x[i], yi = p.y[i], vxi = p.vx[i], vyi = p.vy[i];
     const double qxx = p.qxx[i], qxy = p.qxy[i], qyx = p.qyx[i], qyy = p.qyy[i];
     const double qqx0 = p.qqx0[i], qqx1 = p.qqx1[i], qqx2 = p.qqx2[i];
@@ -80,12 +78,12 @@ void momentum_loop(Simulation& sim, double dt, double inv_w_dx) {
     p.ay[i] = ay;
     dissipated += 0.5 * mi * power;  // each pair is visited from both ends
   }
-  sim.energy.dissipated += dt * dissipated;
+  return dissipated;
 }
 
 }  // namespace
 
-void momentum(Simulation& sim, double dt) {
+double momentum(Simulation& sim, std::size_t lo, std::size_t hi) {
   const bool quad = sim.method.correction == GradientCorrection::Quadratic;
   const bool as = sim.method.artificial_stress.enabled();
   const bool hg = sim.method.hourglass.enabled();
@@ -96,13 +94,20 @@ void momentum(Simulation& sim, double dt) {
   }
   // One instantiation per combination of optional terms: no branches in the
   // pair loop for terms that are off.
-  using Loop = void (*)(Simulation&, double, double);
+  using Loop = double (*)(Simulation&, double, std::size_t, std::size_t);
   static constexpr Loop loops[8] = {
       momentum_loop<false, false, false>, momentum_loop<false, false, true>,
       momentum_loop<false, true, false>,  momentum_loop<false, true, true>,
       momentum_loop<true, false, false>,  momentum_loop<true, false, true>,
       momentum_loop<true, true, false>,   momentum_loop<true, true, true>};
-  loops[(quad ? 4 : 0) + (as ? 2 : 0) + (hg ? 1 : 0)](sim, dt, inv_w_dx);
+  return loops[(quad ? 4 : 0) + (as ? 2 : 0) + (hg ? 1 : 0)](sim, inv_w_dx, lo, hi);
+}
+
+void momentum(Simulation& sim, double dt) {
+  const double dissipated = over_shares<double>(
+      "momentum", sim.particles.n, sim.threads,
+      [&](std::size_t lo, std::size_t hi, double& s) { s += momentum(sim, lo, hi); });
+  sim.energy.dissipated += dt * dissipated;
 }
 
 }  // namespace gearsph::physics

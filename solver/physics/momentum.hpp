@@ -5,12 +5,16 @@
 //                        - Pi_ij I + (R_i + R_j) f_ij^n) . grad_i W_ij
 // Pairwise antisymmetric, so linear momentum is conserved to round-off;
 // B = I unless the kernel-gradient correction is on. Hourglass damping is
-// added here too (see hourglass.hpp). Fills ax, ay and returns nothing;
-// the energy removed by viscosity and hourglass damping over dt is added to
-// the ledger.
+// added here too (see hourglass.hpp). Fills ax, ay.
+#include <cstddef>
+
 namespace gearsph {
 struct Simulation;
 namespace physics {
+// Particles lo .. hi (a pass of the step's table): returns the power they
+// lose to viscosity and hourglass damping [W/m].
+double momentum(Simulation& sim, std::size_t lo, std::size_t hi);
+// Every particle, and the energy over dt into the ledger.
 void momentum(Simulation& sim, double dt);
 }  // namespace physics
 }  // namespace gearsph

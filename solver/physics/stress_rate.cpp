@@ -1,5 +1,6 @@
 #include "solver/physics/stress_rate.hpp"
 
+#include "solver/core/passes.hpp"
 #include "solver/core/simulation.hpp"
 #include "solver/physics/artificial_stress.hpp"
 #include "solver/physics/elastic_law.hpp"
@@ -35,12 +36,10 @@ void cache_for_momentum(Particles& p, std::size_t i, const ArtificialStress& as)
 
 }  // namespace
 
-void update_stress(Simulation& sim, double dt) {
+void update_stress(Simulation& sim, double dt, std::size_t lo, std::size_t hi) {
   Particles& p = sim.particles;
   const ArtificialStress& as = sim.method.artificial_stress;
-  const std::size_t n = p.n;
-#pragma omp parallel for num_threads(sim.threads) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = lo; i < hi; ++i) {
     const Material& mat = sim.material_of(i);
     const double K = mat.bulk_modulus(), two_g = 2.0 * mat.shear_modulus();
 
@@ -64,6 +63,11 @@ void update_stress(Simulation& sim, double dt) {
 
     cache_for_momentum(p, i, as);
   }
+}
+
+void update_stress(Simulation& sim, double dt) {
+  over_shares<int>("stress", sim.particles.n, sim.threads,
+                   [&](std::size_t lo, std::size_t hi, int&) { update_stress(sim, dt, lo, hi); });
 }
 
 void prepare_momentum(Simulation& sim) {

@@ -67,17 +67,6 @@ Cuts planned_chunks(Simulation& sim) {
   return {rp.deformation_chunks, rp.momentum_chunks};
 }
 
-// F loop, pass 0 for chunk c: displacements u = x - X, so that the pair
-// loop gathers two values per neighbour instead of four.
-void displacements(Simulation& sim, const RowChunks& chunks, int c) {
-  const Particles& p = sim.particles;
-  ReferencePairs& rp = sim.reference;
-  for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
-    rp.u[4 * i] = p.x[i] - p.x0[i];
-    rp.u[4 * i + 1] = p.y[i] - p.y0[i];
-  }
-}
-
 // F loop, pass 1 for chunk c, each pair once: M_i += V0_j (u_j - u_i) (x) G_ij
 // and M_j += V0_i (u_i - u_j) (x) G_ji, with displacements u = x - X so that
 // round-off does not swamp strains of 1e-6 on positions of 1e-1 m (the small
@@ -225,14 +214,6 @@ void note_chunk_peak(Simulation& sim, const RowChunks& chunks, int c) {
     }
   }
   sim.reference.chunk_peaks[c] = {j2_max, peak};
-}
-
-// Pass 2 whole: the stress, the contact normals turned with the material,
-// and the chunk's peak.
-void stress_pass(Simulation& sim, RowChunks& chunks, int c) {
-  stress_per_particle(sim, chunks, c);
-  turn_contact_normals(sim, chunks.begin(c), chunks.end(c));
-  note_chunk_peak(sim, chunks, c);
 }
 
 // The pair loop of the momentum equation, instantiated with and without
@@ -397,29 +378,34 @@ template <bool kHourglass>
 double run_stress_and_momentum(Simulation& sim, bool stress, bool momentum) {
   const Cuts cut = planned_chunks(sim);
   RowChunks &f_rows = cut.deformation, &m_rows = cut.momentum;
-  auto displace = [&](int c, double&) { displacements(sim, f_rows, c); };
-  auto deformation = [&](int c, double&) { deformation_pairs(sim, f_rows, c); };
-  auto stresses = [&](int c, double&) { stress_pass(sim, f_rows, c); };
+  auto displace = [&](int c, int, double&) { displacements(sim, f_rows.begin(c), f_rows.end(c)); };
+  auto deformation = [&](int c, int, double&) { deformation_pairs(sim, f_rows, c); };
+  auto stresses = [&](int c, int, double&) { stress_per_particle(sim, f_rows, c); };
+  auto normals = [&](int c, int, double&) {
+    turn_contact_normals(sim, f_rows.begin(c), f_rows.end(c));
+  };
+  auto peak = [&](int c, int, double&) { note_chunk_peak(sim, f_rows, c); };
   // The stress pass leaves the momentum pass's packed state; a momentum
   // pass on its own copies it first.
-  auto state = [&](int c, double&) {
-    if (!stress) copy_state(sim, f_rows, c);
+  auto state = [&](int c, int, double&) { copy_state(sim, f_rows, c); };
+  auto momentum_sums = [&](int c, int, double& s) {
+    s += momentum_pairs<kHourglass>(sim, m_rows, c);
   };
-  auto momentum_sums = [&](int c, double& s) { s += momentum_pairs<kHourglass>(sim, m_rows, c); };
-  auto accelerations = [&](int c, double& s) {
+  auto accelerations = [&](int c, int, double& s) {
     s += accelerations_per_particle<kHourglass>(sim, m_rows, c);
   };
   const Pass<double> all[] = {
-      {"displacements", Runs::OverChunks, &f_rows, displace},
-      {"deformation gradient", Runs::OverChunks, &f_rows, deformation},
-      {"stress", Runs::OverChunks, &f_rows, stresses},
-      {"positions and velocities", Runs::OverChunks, &f_rows, state},
-      {"momentum sums", Runs::OverChunks, &m_rows, momentum_sums},
-      {"accelerations", Runs::OverChunks, &m_rows, accelerations},
+      {"displacements", Runs::OverChunks, &f_rows, displace, Sync::Barrier, stress},
+      {"deformation gradient", Runs::OverChunks, &f_rows, deformation, Sync::Barrier, stress},
+      {"stress", Runs::OverChunks, &f_rows, stresses, Sync::Barrier, stress},
+      {"contact normals", Runs::OverChunks, &f_rows, normals, Sync::Continues, stress},
+      {"peak stress", Runs::OverChunks, &f_rows, peak, Sync::Continues, stress},
+      {"positions and velocities", Runs::OverChunks, &f_rows, state, Sync::Barrier,
+       momentum && !stress},
+      {"momentum sums", Runs::OverChunks, &m_rows, momentum_sums, Sync::Barrier, momentum},
+      {"accelerations", Runs::OverChunks, &m_rows, accelerations, Sync::Barrier, momentum},
   };
-  const std::span<const Pass<double>> passes =
-      std::span(all).subspan(stress ? 0 : 3, (stress ? 3 : 0) + (momentum ? 3 : 0));
-  const double dissipated = run_passes(passes, f_rows.chunks(), kNeverStop);
+  const double dissipated = run_passes<double>(all, f_rows.chunks(), kNeverStop);
   if (stress) gather_largest_j2(sim);
   return dissipated;
 }
@@ -464,12 +450,27 @@ TotalLagrangianPasses total_lagrangian_passes(Simulation& sim) {
   return {cut.deformation, cut.momentum, hourglass};
 }
 
+void displacements(Simulation& sim, std::size_t lo, std::size_t hi) {
+  const Particles& p = sim.particles;
+  const double *x = p.x.data(), *y = p.y.data(), *x0 = p.x0.data(), *y0 = p.y0.data();
+  double* const u = sim.reference.u.data();
+#pragma omp simd
+  for (std::size_t i = lo; i < hi; ++i) {
+    u[4 * i] = x[i] - x0[i];
+    u[4 * i + 1] = y[i] - y0[i];
+  }
+}
+
 void deformation_sums(Simulation& sim, TotalLagrangianPasses& tl, int c) {
   deformation_pairs(sim, tl.deformation, c);
 }
 
 void stress_from_deformation(Simulation& sim, TotalLagrangianPasses& tl, int c) {
-  stress_pass(sim, tl.deformation, c);
+  stress_per_particle(sim, tl.deformation, c);
+}
+
+void note_peak_stress(Simulation& sim, TotalLagrangianPasses& tl, int c) {
+  note_chunk_peak(sim, tl.deformation, c);
 }
 
 double momentum_sums(Simulation& sim, TotalLagrangianPasses& tl, int c) {

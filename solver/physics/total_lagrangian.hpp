@@ -123,32 +123,32 @@ namespace physics {
 // set-up, on the same reference positions, which nothing moves between.
 void total_lagrangian_setup(Simulation& sim);
 
-// The passes of a step, for the integrator's own parallel region
-// (integrate/integrator.cpp). Each runs over chunk c of the rows; a pass
-// reads what the one before it wrote on other threads' rows, so a barrier
-// separates them. Thread t runs chunks t, t + team, ...
+// The passes of a step, for the step's table
+// (integrate/step_total_lagrangian.cpp). Each runs over chunk c of the
+// rows; a pass that reads other chunks' rows needs a barrier before it.
 struct TotalLagrangianPasses {
-  RowChunks& deformation;  // passes 1 and 2
-  RowChunks& momentum;     // passes 3 and 4, and the kicks and drift
+  RowChunks& deformation;  // F, the stress, the normals and the peak
+  RowChunks& momentum;     // the momentum sums and accelerations, and the kicks and drift
   bool hourglass;
 };
 // Plans the chunks for sim.threads (once per run); call outside the region.
 TotalLagrangianPasses total_lagrangian_passes(Simulation& sim);
-// Pass 1: the sums M of F = I + M, from the displacements u = x - X that
-// the drift left in sim.reference.u (integrate/motion.hpp).
+// The displacements u = x - X of particles lo .. hi into sim.reference.u,
+// beside V0, for the F loop's gathers (one line a neighbour).
+void displacements(Simulation& sim, std::size_t lo, std::size_t hi);
+// The sums M of F = I + M, from the displacements.
 void deformation_sums(Simulation& sim, TotalLagrangianPasses& tl, int c);
-// Pass 2: F, P, the Cauchy stress and density per particle, the turned
-// contact normals of surface particles with contact candidates, and the
-// chunk's largest J2.
+// F, P, the Cauchy stress and density per particle (Saint Venant-Kirchhoff).
 void stress_from_deformation(Simulation& sim, TotalLagrangianPasses& tl, int c);
-// After pass 2, outside the region: the chunks' largest J2 into
-// sim.largest_j2, for this step.
+// The chunk's largest J2, for the run's peak stress without a scan of its own.
+void note_peak_stress(Simulation& sim, TotalLagrangianPasses& tl, int c);
+// After the step's passes: the chunks' largest J2 into sim.largest_j2.
 void gather_largest_j2(Simulation& sim);
-// Pass 3: the pair sums of the momentum equation; returns the power the
-// hourglass control removes [W/m].
+// The pair sums of the momentum equation; returns the power the hourglass
+// control removes [W/m].
 double momentum_sums(Simulation& sim, TotalLagrangianPasses& tl, int c);
-// Pass 4: a from the pair sums, per particle; returns the power the
-// viscosity removes [W/m].
+// a from the pair sums, per particle; returns the power the viscosity
+// removes [W/m].
 double accelerations(Simulation& sim, TotalLagrangianPasses& tl, int c);
 
 // F from current positions, then P and the Cauchy stress for output.

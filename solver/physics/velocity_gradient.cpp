@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "solver/core/passes.hpp"
 #include "solver/core/simulation.hpp"
 #include "solver/physics/continuity.hpp"
 #include "solver/physics/kernel_correction.hpp"
@@ -38,18 +39,15 @@ void store_correction(Particles& p, std::size_t i, const Correction& c) {
 }
 
 template <bool kQuadratic, class K>
-void velocity_gradient_loop(Simulation& sim, const K& kernel, double half_dt) {
+void velocity_gradient_loop(Simulation& sim, const K& kernel, double half_dt, std::size_t lo,
+                            std::size_t hi) {
   Particles& p = sim.particles;
   NeighbourList& nl = sim.neighbours;
   const GradientCorrection requested = sim.method.correction;
   const bool correct = requested != GradientCorrection::None;
   const bool keep_w = sim.method.artificial_stress.enabled();
   const double h = sim.h();
-  const std::size_t n = p.n;
-  if (keep_w && nl.w.size() != nl.j.size()) nl.w.assign(nl.j.size(), 0.0);
-
-#pragma omp parallel for num_threads(sim.threads) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = lo; i < hi; ++i) {
     const double xi = p.x[i], yi = p.y[i], vxi = p.vx[i], vyi = p.vy[i];
     // R = sum_j V_j (v_j - v_i) (x) (-w phi): linear block (the raw SPH
     // gradient) and quadratic block.
@@ -118,15 +116,27 @@ void velocity_gradient_loop(Simulation& sim, const K& kernel, double half_dt) {
 
 }  // namespace
 
-void velocity_gradient(Simulation& sim, double dt) {
+void velocity_gradient(Simulation& sim, double dt, std::size_t lo, std::size_t hi) {
   const bool quadratic = sim.method.correction == GradientCorrection::Quadratic;
   with_kernel(sim.discretization.kernel, sim.h(), [&](const auto& kernel) {
     if (quadratic) {
-      velocity_gradient_loop<true>(sim, kernel, 0.5 * dt);
+      velocity_gradient_loop<true>(sim, kernel, 0.5 * dt, lo, hi);
     } else {
-      velocity_gradient_loop<false>(sim, kernel, 0.5 * dt);
+      velocity_gradient_loop<false>(sim, kernel, 0.5 * dt, lo, hi);
     }
   });
+}
+
+void velocity_gradient(Simulation& sim, double dt) {
+  NeighbourList& nl = sim.neighbours;
+  // The kernel values the artificial stress reads, sized once (the list's
+  // builds keep them sized).
+  if (sim.method.artificial_stress.enabled() && nl.w.size() != nl.j.size()) {
+    nl.w.assign(nl.j.size(), 0.0);
+  }
+  over_shares<int>(
+      "velocity gradient", sim.particles.n, sim.threads,
+      [&](std::size_t lo, std::size_t hi, int&) { velocity_gradient(sim, dt, lo, hi); });
 }
 
 }  // namespace gearsph::physics

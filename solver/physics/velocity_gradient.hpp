@@ -1,4 +1,6 @@
 #pragma once
+#include <cstddef>
+
 namespace gearsph {
 struct Simulation;
 namespace physics {
@@ -9,5 +11,8 @@ namespace physics {
 // The velocities are the mid-step ones, so L is mapped to the mid-step
 // configuration (dt is the step being taken; 0 at initialisation).
 void velocity_gradient(Simulation& sim, double dt);
+// The same for particles lo .. hi (a pass of the step's table), once the
+// whole-set call above has sized the neighbour list's kernel values.
+void velocity_gradient(Simulation& sim, double dt, std::size_t lo, std::size_t hi);
 }  // namespace physics
 }  // namespace gearsph

@@ -43,6 +43,21 @@ nlohmann::json energy_summary(const History& h) {
 
 }  // namespace
 
+nlohmann::json pass_timing(const PassTimes& times, std::int64_t steps) {
+  nlohmann::json passes = nlohmann::json::array();
+  const double total = times.total_seconds();
+  // Seconds over the whole run, from the timed steps (one in kTimedEvery).
+  const double scale = times.timed_steps() > 0 ? double(steps) / double(times.timed_steps()) : 0.0;
+  for (const PassTime& t : times.entries()) {
+    passes.push_back({{"name", t.name},
+                      {"seconds", scale * t.seconds},
+                      {"share", total > 0.0 ? t.seconds / total : 0.0}});
+  }
+  return {{"timed_every_steps", PassTimes::kTimedEvery},
+          {"timed_steps", times.timed_steps()},
+          {"passes", passes}};
+}
+
 nlohmann::json make_summary(const PreparedJob& job, const RunResult& result,
                             const PeakTracker& peak) {
   const Scene& scene = job.scene;
@@ -63,6 +78,7 @@ nlohmann::json make_summary(const PreparedJob& job, const RunResult& result,
   s["simulated_s"] = sim.time;
   s["wall_s"] = result.wall_s;
   s["threads"] = sim.threads;
+  s["timing"] = pass_timing(sim.pass_times, result.steps_done);
   s["particle_steps_per_s"] =
       result.wall_s > 0 ? double(sim.particles.n) * double(result.steps_done) / result.wall_s : 0.0;
   s["time_step"] = {{"dt_s", job.time_step.dt},
