@@ -1,5 +1,9 @@
 #include "server/http_session.hpp"
 
+#include <sys/socket.h>
+
+#include <cerrno>
+
 #include <boost/asio/dispatch.hpp>
 #include <boost/asio/post.hpp>
 #include <boost/asio/write.hpp>
@@ -155,7 +159,14 @@ void HttpSession::dispatch() {
     return;
   }
   // Handlers that may block run on their pool; the answer comes back to
-  // this connection's strand.
+  // this connection's strand. Meanwhile nothing reads the socket: a peek
+  // tells whether the client closed it (0 bytes: an orderly close; an
+  // error: a reset), so that long work for nobody stops.
+  req->gone = [fd = stream_.socket().native_handle()] {
+    char c = 0;
+    const ssize_t n = ::recv(fd, &c, 1, MSG_PEEK | MSG_DONTWAIT);
+    return n == 0 || (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR);
+  };
   net::thread_pool& pool = lane == Lane::store ? pools_.store : pools_.slow;
   net::post(pool, [self = shared_from_this(), ex = stream_.get_executor(), req,
                    m = std::move(match)]() mutable {

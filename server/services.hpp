@@ -17,6 +17,7 @@
 #include "server/event_hub.hpp"
 #include "server/image_cache.hpp"
 #include "server/job_store.hpp"
+#include "server/preview_cache.hpp"
 
 namespace gearsph::server {
 
@@ -35,6 +36,8 @@ struct Services {
   EventHub& hub;
   std::filesystem::path jobs_dir;
   ImageCache images;  // rendered images, outside the job directories
+  // Previews by job: 16 MB holds a few dozen with their particles listed.
+  PreviewCache previews{16u << 20};
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
   std::atomic<int> connections{0};
   std::atomic<std::int64_t> requests{0};

@@ -119,6 +119,8 @@ int cmd_serve(Args& args) {
   l.max_study_jobs = static_cast<std::int64_t>(
       number_option(args, "max-study-jobs", static_cast<double>(l.max_study_jobs)));
   l.max_connections = args.integer("max-connections", l.max_connections);
+  l.max_built_particles = static_cast<std::int64_t>(
+      number_option(args, "build-budget", static_cast<double>(l.max_built_particles)));
   if (auto v = args.option("image-cache-mb")) {
     std::size_t used = 0;
     double mb = -1;
@@ -138,6 +140,7 @@ int cmd_serve(Args& args) {
   t.idle = seconds_option(args, "idle-timeout", t.idle);
   t.write = seconds_option(args, "write-timeout", t.write);
   t.sse_keepalive = seconds_option(args, "keepalive", t.sse_keepalive);
+  t.build = seconds_option(args, "build-timeout", t.build);
   if (!args.positional().empty()) throw std::invalid_argument("serve takes no file arguments");
 
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
