@@ -55,6 +55,19 @@ TEST(ServerLifecycle, SigkillAfterMaxAttemptsFails) {
   expect_consistent_store(server.data());
 }
 
+// N2: a second SIGTERM while the first is still waiting (here for an idle
+// kept-alive connection, up to the 3 s shutdown grace) exits at once.
+TEST(ServerLifecycle, ASecondSigtermForcesTheExit) {
+  ServerProcess server({"--workers", "1", "--threads-per-job", "1"});
+  auto c = server.client();
+  ASSERT_EQ(c.get("/health").status, 200u);  // the connection stays open
+  ::kill(server.pid(), SIGTERM);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_EQ(server.stop(SIGTERM), 128 + SIGTERM) << server.log();
+  EXPECT_NE(server.log().find("SIGTERM again: exiting without waiting"), std::string::npos)
+      << server.log();
+}
+
 TEST(ServerLifecycle, SigtermStopsGracefullyAndRequeues) {
   ServerProcess server({"--workers", "1", "--threads-per-job", "1"});
   auto c = server.client();

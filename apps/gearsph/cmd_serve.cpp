@@ -159,6 +159,11 @@ int cmd_serve(Args& args) {
 #ifdef GEARSPH_WITH_FE
   // Jobs asking for the FE check are taken only where gmsh and ccx are.
   c.fe_check_unavailable = [] { return fe::fe_unavailable_reason(); };
+  // FE work directories of servers that died during a check.
+  if (const int stale = fe::remove_stale_work_dirs("gearsph-fe-")) {
+    std::fprintf(stderr, "gearsph serve: removed %d FE work folder(s) of stopped processes\n",
+                 stale);
+  }
 #endif
   if (!c.local_workers) c.workers = 0;
   server::Server s(c);
