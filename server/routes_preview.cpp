@@ -30,9 +30,9 @@ constexpr std::size_t kMaxListedParticles = 20000;
 constexpr std::int64_t kSpeedSampleJobs = 20;
 // Runs shorter than this are mostly start-up and would understate the speed.
 constexpr double kMinSampleWall_s = 1.0;
-// Used before this server has finished a job: the rack-and-pinion case
-// (651 particles, total Lagrangian, 2 threads) on a 2-core machine ran at
-// 4.8e4 particle-steps per second.
+// Used when neither a finished job nor the calibration gives a speed: the
+// rack-and-pinion case (651 particles, total Lagrangian, 2 threads) on a
+// 2-core machine ran at 4.8e4 particle-steps per second.
 constexpr double kFallbackParticleStepsPerSecond = 5e4;
 
 double rounded(double v, double quantum) {
@@ -59,14 +59,21 @@ nlohmann::json run_time_estimate(Services& s, const JobEstimate& estimate) {
     ++used;
   }
   const bool measured = used > 0 && wall > 0 && work > 0;
-  const double speed = measured ? work / wall : kFallbackParticleStepsPerSecond;
+  // Before a finished job: the speed this server measured of itself.
+  const SpeedCalibration& calibration = measured ? SpeedCalibration{} : s.calibration();
+  const bool calibrated = !measured && calibration.particle_steps_per_s > 0;
+  const double speed = measured     ? work / wall
+                       : calibrated ? calibration.particle_steps_per_s
+                                    : kFallbackParticleStepsPerSecond;
   const double compute_s = estimate.particle_steps / speed;
   nlohmann::json e = {
       {"wall_s", compute_s + estimate.output_s},
       {"compute_s", compute_s},
       {"output_s", estimate.output_s},
       {"particle_steps_per_s", speed},
-      {"basis", measured ? "measured" : "fallback"},
+      {"basis", measured     ? "measured"
+                : calibrated ? "calibrated"
+                             : "fallback"},
       {"jobs_measured", used},
       {"threads_per_job", s.config.threads_per_job},
   };
@@ -77,6 +84,14 @@ nlohmann::json run_time_estimate(Services& s, const JobEstimate& estimate) {
                   "successful job%s, plus writing %lld frames and the histories; time in the "
                   "queue not included",
                   speed, used, used == 1 ? "" : "s", static_cast<long long>(estimate.frames));
+  } else if (calibrated) {
+    std::snprintf(note, sizeof note,
+                  "estimate: %.3g particle-steps per second, this server's own speed on the "
+                  "seed paper's case (%.0f particles, %.0f steps in %.2f s, measured at its first "
+                  "preview), plus writing %lld frames and the histories; time in the queue not "
+                  "included",
+                  speed, calibration.particles, calibration.steps, calibration.wall_s,
+                  static_cast<long long>(estimate.frames));
   } else {
     std::snprintf(note, sizeof note,
                   "estimate: %.3g particle-steps per second, a figure measured on a 2-core "

@@ -2,6 +2,7 @@
 // What request handlers work with: the configuration, the job store, the
 // workers (for live progress and cancellation) and the event hub. Owned by
 // the Server; handlers receive it by reference.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <filesystem>
@@ -18,6 +19,7 @@
 #include "server/image_cache.hpp"
 #include "server/job_store.hpp"
 #include "server/preview_cache.hpp"
+#include "server/speed_calibration.hpp"
 
 namespace gearsph::server {
 
@@ -43,6 +45,16 @@ struct Services {
   std::atomic<std::int64_t> requests{0};
   std::atomic<bool> stopping{false};    // shutting down: no more keep-alive
   std::atomic<unsigned short> port{0};  // the port listened on (known once bound)
+
+  // This machine's speed, measured once, by the first caller (a preview
+  // before any job has finished); the callers at the same time wait for it.
+  const SpeedCalibration& calibration() {
+    std::call_once(calibration_once_, [this] {
+      calibration_ =
+          calibrate_speed(std::max(1, config.threads_per_job), [this] { return stopping.load(); });
+    });
+    return calibration_;
+  }
 
   // The directory whose files are the job's (attempt_dirs.hpp).
   std::filesystem::path job_dir(const JobRecord& job) const { return results_dir(jobs_dir, job); }
@@ -90,6 +102,8 @@ struct Services {
   }
 
  private:
+  std::once_flag calibration_once_;
+  SpeedCalibration calibration_;
   mutable std::mutex counts_mutex_;
   std::string store_error_;
   std::chrono::steady_clock::time_point store_down_since_;

@@ -113,15 +113,22 @@ TEST_F(ServerPreview, ParametersChangeTheGeometry) {
   EXPECT_GT(fb.at("particles").get<std::int64_t>(), fa.at("particles").get<std::int64_t>());
 }
 
-TEST_F(ServerPreview, FallbackEstimateOnAServerWithoutFinishedJobs) {
+// A server without a finished job measures its own speed (the paper's case
+// for a few thousand steps) instead of quoting a constant: 5e4
+// particle-steps per second put the paper's one-minute case at 8 h.
+TEST_F(ServerPreview, CalibratedEstimateOnAServerWithoutFinishedJobs) {
   ServerProcess fresh({"--threads-per-job", "1"});
-  auto c = fresh.client();
+  auto c = fresh.client(std::chrono::seconds(120));
   const json p = c.post_json("/preview", kPaperCase.dump()).json();
   const json& rt = p.at("run_time");
-  EXPECT_EQ(rt.at("basis"), "fallback");
+  EXPECT_EQ(rt.at("basis"), "calibrated") << rt.dump();
   EXPECT_EQ(rt.at("jobs_measured"), 0);
-  EXPECT_DOUBLE_EQ(rt.at("particle_steps_per_s").get<double>(), 5e4);
-  EXPECT_DOUBLE_EQ(rt.at("compute_s").get<double>(), p.at("particle_steps").get<double>() / 5e4);
+  const double speed = rt.at("particle_steps_per_s").get<double>();
+  // Any machine this runs on computes faster than 1e5 particle-steps a
+  // second on one thread (1-3e7 measured on 2 cores).
+  EXPECT_GT(speed, 1e5);
+  EXPECT_NEAR(rt.at("compute_s").get<double>(), p.at("particle_steps").get<double>() / speed,
+              1e-9 * rt.at("compute_s").get<double>());
   // Writing the frames and histories comes on top (test_server_hardening.cpp).
   EXPECT_GT(rt.at("output_s").get<double>(), 0.0);
   EXPECT_DOUBLE_EQ(rt.at("wall_s").get<double>(),
@@ -152,8 +159,8 @@ TEST_F(ServerPreview, EstimateFromFinishedJobs) {
     EXPECT_GE(rt.at("particle_steps_per_s").get<double>(), speed * (1 - 1e-9));
     EXPECT_LE(rt.at("particle_steps_per_s").get<double>(), 10 * speed * (1 + 1e-9));
   } else {
-    // Too short to measure a speed from: mostly start-up.
-    EXPECT_EQ(rt.at("basis"), "fallback");
+    // Too short to measure a speed from (mostly start-up): the calibration's.
+    EXPECT_EQ(rt.at("basis"), "calibrated");
   }
 }
 
