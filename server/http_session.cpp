@@ -22,6 +22,19 @@ namespace {
 constexpr std::chrono::seconds kLinger{2};
 constexpr std::size_t kLingerBytes = 16 << 20;
 
+// Whether the request line in `buffer` ends with "HTTP/" DIGIT "." DIGIT
+// (RFC 9112 section 2.3).
+bool well_formed_version(const beast::flat_buffer& buffer) {
+  const auto data = buffer.data();
+  std::string_view text(static_cast<const char*>(data.data()), data.size());
+  text = text.substr(0, text.find("\r\n"));
+  const auto space = text.rfind(' ');
+  if (space == std::string_view::npos) return false;
+  const std::string_view v = text.substr(space + 1);
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  return v.size() == 8 && v.substr(0, 5) == "HTTP/" && digit(v[5]) && v[6] == '.' && digit(v[7]);
+}
+
 }  // namespace
 
 HttpSession::HttpSession(tcp::socket&& socket, const Router& router, HandlerPools pools)
@@ -97,8 +110,17 @@ void HttpSession::on_header(beast::error_code ec) {
                                  ""));
   }
   if (ec == http::error::bad_version) {
-    return refuse(problem::plain(http::status::http_version_not_supported,
-                                 "this server speaks HTTP/1.1 (and HTTP/1.0)", ""));
+    // Beast takes only 1.x: a well-formed other version (HTTP/2.0) gets
+    // 505; anything else is a malformed request line (RFC 9112 section
+    // 2.3), 400.
+    if (well_formed_version(buffer_)) {
+      return refuse(problem::plain(http::status::http_version_not_supported,
+                                   "this server speaks HTTP/1.1 (and HTTP/1.0)", ""));
+    }
+    return refuse(problem::plain(http::status::bad_request,
+                                 "the request line does not end with an HTTP version such as "
+                                 "HTTP/1.1",
+                                 ""));
   }
   if (ec) {
     return refuse(problem::plain(http::status::bad_request,

@@ -196,6 +196,13 @@ TEST_F(ServerHardening, HttpVersionsAndControlCharactersInPaths) {
   EXPECT_EQ(status_line(raw(*server_, "GET /health HTTP/2.0\r\nHost: 127.0.0.1:" + server_->port() +
                                           "\r\n\r\n")),
             "HTTP/1.1 505 HTTP Version Not Supported");
+  // N5: a request line whose version is not HTTP/d.d is malformed: 400, not 505.
+  for (const char* line : {"GET /health HTTP/1.x", "GET /health FOO/1.1", "GET /health HTTP/11"}) {
+    EXPECT_EQ(status_line(raw(*server_, std::string(line) +
+                                            "\r\nHost: 127.0.0.1:" + server_->port() + "\r\n\r\n")),
+              "HTTP/1.1 400 Bad Request")
+        << line;
+  }
   const ClientResponse nul = c.get("/health%00");
   EXPECT_EQ(nul.status, 400u);
   const std::string detail = nul.json().at("detail");
