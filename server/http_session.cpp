@@ -48,6 +48,7 @@ HttpSession::HttpSession(tcp::socket&& socket, const Router& router, HandlerPool
 
 HttpSession::~HttpSession() {
   --services_.connections;
+  if (streaming_) --services_.event_streams;
 }
 
 void HttpSession::run() {
@@ -204,6 +205,19 @@ void HttpSession::send(std::shared_ptr<Request> req, Response res) {
       [&](auto& m) {
         using M = std::decay_t<decltype(m)>;
         if constexpr (std::is_same_v<M, EventStream>) {
+          if (++services_.event_streams > services_.max_event_streams()) {
+            --services_.event_streams;
+            StringResponse busy = problem::plain(
+                http::status::service_unavailable,
+                "too many open event streams (" + std::to_string(services_.max_event_streams()) +
+                    ", half of --max-connections); try again shortly, or poll /jobs/{id}",
+                req->path);
+            busy.set(http::field::retry_after, "5");
+            busy.keep_alive(false);
+            write(std::make_shared<StringResponse>(std::move(busy)), true);
+            return;
+          }
+          streaming_ = true;
           chunked_ = req->msg.version() >= 11;
           start_events(std::move(m));
         } else {

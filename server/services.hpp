@@ -42,6 +42,10 @@ struct Services {
   PreviewCache previews{16u << 20};
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
   std::atomic<int> connections{0};
+  // Open event streams: at most half the connections (max_event_streams),
+  // so that idle streams never lock out the requests.
+  std::atomic<int> event_streams{0};
+  int max_event_streams() const { return std::max(1, config.limits.max_connections / 2); }
   std::atomic<std::int64_t> requests{0};
   std::atomic<bool> stopping{false};    // shutting down: no more keep-alive
   std::atomic<unsigned short> port{0};  // the port listened on (known once bound)
