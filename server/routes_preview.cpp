@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "server/job_limits.hpp"
+#include "server/log.hpp"
 #include "server/problem.hpp"
 #include "server/submission.hpp"
 #include "solver/job/job.hpp"
@@ -286,6 +287,7 @@ Response preview(Services& s, Request& req) {
                                             {"type", problem::kInvalidJob},
                                             {"errors", problem::errors(e.issues)}});
   } catch (const SetupStopped& e) {
+    log_line(LogLevel::info, "gearsph serve: POST /preview: stopped: %s\n", e.what());
     return json_response(
         http::status::ok,
         refused("/discretization", std::string(e.what()) + ": the scene is too large to preview "

@@ -278,6 +278,29 @@ TEST(ServerAdmission, EstimatesAgreeWithTheBuiltCounts) {
   EXPECT_NEAR(est.at("steps").get<double>(), steps, 0.1 * steps);
 }
 
+// N1: a preview whose client hangs up stops building (the paper's gears at
+// 0.5 mm take some 7 s to build); the next request is served.
+TEST(ServerAdmission, AnAbandonedPreviewStopsBuilding) {
+  ServerProcess server({"--threads-per-job", "1", "--build-budget", "1e6"});
+  json gears = kPaperCase;
+  gears["discretization"] = {{"spacing_mm", 0.5}};
+  const std::string body = gears.dump();
+  const std::string request =
+      "POST /preview HTTP/1.1\r\nHost: 127.0.0.1:" + server.port() +
+      "\r\nContent-Type: application/json\r\nContent-Length: " + std::to_string(body.size()) +
+      "\r\n\r\n" + body;
+  // Sent, and the connection closed at once.
+  raw_exchange(server.host(), server.port(), request, std::chrono::milliseconds(200));
+  bool stopped = false;
+  for (int i = 0; i < 600 && !stopped; ++i) {
+    stopped =
+        server.log().find("POST /preview: stopped: the request was abandoned") != std::string::npos;
+    if (!stopped) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  EXPECT_TRUE(stopped) << server.log();
+  EXPECT_EQ(server.client().get("/health").status, 200u);
+}
+
 // A submission beyond the build budget is stored with the estimate's
 // counts, not built in the request; the same preview twice is served
 // from the cache.
