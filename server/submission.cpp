@@ -145,6 +145,13 @@ std::variant<nlohmann::json, StringResponse> read_json_body(const Request& req) 
   p.type = problem::kMalformedJson;
   p.title = "Malformed JSON";
   p.instance = req.path;
+  // JSON text has no raw NUL (RFC 8259 section 7: control characters are
+  // escaped); the parser would stop at one and read the rest as absent.
+  if (const auto nul = body.find('\0'); nul != std::string::npos) {
+    p.detail = "the body holds a NUL byte at offset " + std::to_string(nul) +
+               "; JSON text escapes control characters (\\u0000)";
+    return problem::make(p);
+  }
   if (nested_too_deep(body)) {
     p.detail = "the body nests objects or arrays more than " + std::to_string(kMaxJsonDepth) +
                " levels deep";

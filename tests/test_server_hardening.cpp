@@ -142,6 +142,17 @@ TEST(ServerHosts, AnyHostWithAStar) {
 
 // 8. RFC 9112 section 6.1: a transfer coding the server does not know is
 // 501, not read as if it were absent.
+// N10: a raw NUL in a body is an error, not the end of the body.
+TEST_F(ServerHardening, ARawNulInABodyIsRefused) {
+  auto c = server_->client();
+  const std::string body = std::string("{\"scene\": {\"type\": \"plate\"}}") + '\0' + "junk";
+  for (const char* target : {"/jobs", "/preview"}) {
+    const ClientResponse r = c.post_json(target, body);
+    EXPECT_EQ(r.status, 400u) << target << ": " << r.body;
+    EXPECT_NE(r.body.find("NUL byte at offset 28"), std::string::npos) << r.body;
+  }
+}
+
 TEST_F(ServerHardening, UnknownTransferCodingsAre501) {
   auto c = server_->client();
   const auto before = c.get("/jobs").json().at("numberMatched").get<int>();
