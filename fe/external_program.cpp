@@ -2,8 +2,8 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <stdlib.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -43,6 +43,85 @@ std::filesystem::path locate(const char* name, const char* override_var, std::st
   }
   why = std::string(name) + " is not on PATH";
   return {};
+}
+
+// Asked while a tool runs on this thread (ProgramStopScope).
+thread_local std::function<bool()> thread_stop;
+
+// SIGTERM to the tool's group, then SIGKILL if it is still there after
+// kStopGrace: gmsh and ccx write nothing worth waiting longer for.
+constexpr auto kStopGrace = std::chrono::seconds(2);
+
+void stop_group(pid_t pid, int& status) {
+  ::kill(-pid, SIGTERM);
+  const auto give_up = std::chrono::steady_clock::now() + kStopGrace;
+  while (std::chrono::steady_clock::now() < give_up) {
+    if (::waitpid(pid, &status, WNOHANG) == pid) {
+      ::kill(-pid, SIGKILL);  // anything it left behind in its group
+      return;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ::kill(-pid, SIGKILL);
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+}
+
+// fork + exec rather than posix_spawn, for the parent-death signal: if the
+// thread that started the tool dies (the server killed with SIGKILL, say),
+// the kernel kills the tool (prctl(2), PR_SET_PDEATHSIG), so no ccx is left
+// running under PID 1. Between fork and exec the child calls only
+// async-signal-safe functions (signal-safety(7)), as a multi-threaded
+// parent requires; exec's errno comes back through a close-on-exec pipe.
+pid_t spawn_child(const std::string& program, char* const* argv, char* const* envp,
+                  const std::string& dir, const std::string& log) {
+  int report[2];
+  if (::pipe2(report, O_CLOEXEC) != 0) {
+    throw FeFailed("cannot start " + program + ": " + std::strerror(errno));
+  }
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    const int e = errno;
+    ::close(report[0]);
+    ::close(report[1]);
+    throw FeFailed("cannot start " + program + ": " + std::strerror(e));
+  }
+  if (pid == 0) {
+    // Its own process group, so that a timeout or a stop ends whatever it
+    // started; default signal handling (the service ignores SIGPIPE), no mask.
+    ::setpgid(0, 0);
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(127);  // the parent died before prctl
+    for (int sig : {SIGPIPE, SIGINT, SIGTERM, SIGHUP}) ::signal(sig, SIG_DFL);
+    sigset_t none;
+    sigemptyset(&none);
+    ::sigprocmask(SIG_SETMASK, &none, nullptr);
+    int err = 0;
+    const int in = ::open("/dev/null", O_RDONLY);
+    const int out = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (in < 0 || out < 0 || ::chdir(dir.c_str()) != 0 || ::dup2(in, 0) < 0 || ::dup2(out, 1) < 0 ||
+        ::dup2(out, 2) < 0) {
+      err = errno;
+    } else {
+      ::execve(program.c_str(), argv, envp);
+      err = errno;
+    }
+    [[maybe_unused]] const ssize_t n = ::write(report[1], &err, sizeof err);
+    ::_exit(127);
+  }
+  ::close(report[1]);
+  int err = 0;
+  ssize_t n = 0;
+  while ((n = ::read(report[0], &err, sizeof err)) < 0 && errno == EINTR) {
+  }
+  ::close(report[0]);
+  if (n == sizeof err) {
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    throw FeFailed("cannot start " + program + ": " + std::strerror(err));
+  }
+  return pid;
 }
 
 }  // namespace
@@ -95,34 +174,8 @@ ProgramResult run_program(const ProgramRun& run) {
 
   const std::string dir = std::filesystem::absolute(run.work_dir).string();
   const std::string log = std::filesystem::absolute(run.log).string();
-  posix_spawn_file_actions_t actions;
-  posix_spawnattr_t attr;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawnattr_init(&attr);
-  posix_spawn_file_actions_addchdir_np(&actions, dir.c_str());
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  // Its own process group, so that a timeout stops whatever it started;
-  // default signal handling (the service ignores SIGPIPE) and no mask.
-  sigset_t none, defaults;
-  sigemptyset(&none);
-  sigemptyset(&defaults);
-  for (int s : {SIGPIPE, SIGINT, SIGTERM, SIGHUP}) sigaddset(&defaults, s);
-  posix_spawnattr_setsigmask(&attr, &none);
-  posix_spawnattr_setsigdefault(&attr, &defaults);
-  posix_spawnattr_setpgroup(&attr, 0);
-  posix_spawnattr_setflags(&attr,
-                           POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
-  pid_t pid = 0;
   const auto start = Clock::now();
-  const int rc = posix_spawn(&pid, run.program.c_str(), &actions, &attr, argv.data(), envp.data());
-  posix_spawn_file_actions_destroy(&actions);
-  posix_spawnattr_destroy(&attr);
-  if (rc != 0) {
-    throw FeFailed("cannot start " + run.program.string() + ": " + std::strerror(rc));
-  }
-
+  const pid_t pid = spawn_child(run.program.string(), argv.data(), envp.data(), dir, log);
   ProgramResult result;
   const auto deadline = start + std::chrono::duration<double>(run.timeout_s);
   int status = 0;
@@ -134,20 +187,31 @@ ProgramResult run_program(const ProgramRun& run) {
       status = -1;
       break;
     }
-    if (Clock::now() >= deadline) {
-      ::kill(-pid, SIGKILL);
-      while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-      }
-      result.timed_out = true;
+    const bool stop = thread_stop && thread_stop();
+    if (stop || Clock::now() >= deadline) {
+      // The whole group: whatever the tool started goes with it.
+      stop_group(pid, status);
+      result.timed_out = !stop;
+      result.stopped = stop;
       break;
     }
     std::this_thread::sleep_for(pause);
     pause = std::min(pause * 2, std::chrono::milliseconds(50));
   }
   result.wall_s = std::chrono::duration<double>(Clock::now() - start).count();
-  result.exit_status =
-      !result.timed_out && status >= 0 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.exit_status = !result.timed_out && !result.stopped && status >= 0 && WIFEXITED(status)
+                           ? WEXITSTATUS(status)
+                           : -1;
+  if (result.stopped) throw ProgramStopped(run.program.filename().string() + " was stopped");
   return result;
+}
+
+ProgramStopScope::ProgramStopScope(std::function<bool()> stop) : previous_(std::move(thread_stop)) {
+  thread_stop = std::move(stop);
+}
+
+ProgramStopScope::~ProgramStopScope() {
+  thread_stop = std::move(previous_);
 }
 
 std::string file_tail(const std::filesystem::path& file, std::size_t max_chars) {
@@ -160,7 +224,10 @@ std::string file_tail(const std::filesystem::path& file, std::size_t max_chars) 
 }
 
 WorkDir::WorkDir(const std::string& prefix) {
-  std::string pattern = (std::filesystem::temp_directory_path() / (prefix + "XXXXXX")).string();
+  // The owner's process id in the name: remove_stale_work_dirs knows whose it is.
+  std::string pattern =
+      (std::filesystem::temp_directory_path() / (prefix + std::to_string(::getpid()) + "-XXXXXX"))
+          .string();
   if (!::mkdtemp(pattern.data())) {
     throw FeFailed("cannot create a work directory " + pattern + ": " + std::strerror(errno));
   }
@@ -171,6 +238,35 @@ WorkDir::~WorkDir() {
   if (keep_) return;
   std::error_code ec;
   std::filesystem::remove_all(path_, ec);
+}
+
+}  // namespace gearsph::fe
+
+namespace gearsph::fe {
+
+int remove_stale_work_dirs(const std::string& prefix) {
+  int removed = 0;
+  std::error_code ec;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::filesystem::temp_directory_path(), ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(prefix, 0) != 0 || !entry.is_directory(ec)) continue;
+    const std::string rest = name.substr(prefix.size());
+    const auto dash = rest.find('-');
+    if (dash == std::string::npos || dash == 0) continue;
+    pid_t owner = 0;
+    try {
+      owner = static_cast<pid_t>(std::stol(rest.substr(0, dash)));
+    } catch (const std::exception&) {
+      continue;
+    }
+    // Alive (or another user's: EPERM) keeps its folder.
+    if (owner <= 0 || ::kill(owner, 0) == 0 || errno != ESRCH) continue;
+    std::error_code rm;
+    std::filesystem::remove_all(entry.path(), rm);
+    removed += rm ? 0 : 1;
+  }
+  return removed;
 }
 
 }  // namespace gearsph::fe

@@ -5,9 +5,11 @@
 //
 // The tools are found on PATH, or where GEARSPH_GMSH / GEARSPH_CCX point.
 // Each run starts in its own work directory with stdout and stderr in a log
-// file, and is killed (its whole process group) after a timeout. Started
-// with posix_spawn, which is safe from a multi-threaded process.
+// file, in its own process group with a parent-death signal; it is stopped
+// (its whole group: SIGTERM, then SIGKILL) after a timeout or when the
+// caller's ProgramStopScope says so.
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -50,11 +52,37 @@ struct ProgramRun {
 struct ProgramResult {
   int exit_status = -1;  // -1 when killed by a signal (or on timeout)
   bool timed_out = false;
+  bool stopped = false;
   double wall_s = 0.0;
 };
 
-// Runs to completion or timeout; throws FeFailed if it cannot be started.
+// Stopped on request (ProgramStopScope): a job dismissed, a server stopping.
+class ProgramStopped : public FeFailed {
+ public:
+  using FeFailed::FeFailed;
+};
+
+// While in scope on this thread, a running tool is polled against `stop`
+// (every 50 ms at most) and stopped within about two seconds once it says so.
+class ProgramStopScope {
+ public:
+  explicit ProgramStopScope(std::function<bool()> stop);
+  ~ProgramStopScope();
+  ProgramStopScope(const ProgramStopScope&) = delete;
+  ProgramStopScope& operator=(const ProgramStopScope&) = delete;
+
+ private:
+  std::function<bool()> previous_;
+};
+
+// Runs to completion or timeout; throws FeFailed if it cannot be started,
+// ProgramStopped when stopped.
 ProgramResult run_program(const ProgramRun& run);
+
+// Removes the work directories (WorkDir) under the temporary directory
+// named `prefix` whose owning process is gone (a server killed during an
+// FE check); returns how many.
+int remove_stale_work_dirs(const std::string& prefix);
 
 // The last `max_chars` characters of a text file ("" if unreadable).
 std::string file_tail(const std::filesystem::path& file, std::size_t max_chars);

@@ -281,6 +281,9 @@ nlohmann::json run_fe_check(const nlohmann::json& job, const std::filesystem::pa
   }
   std::vector<GearFeResult> results;
   std::vector<RackFeResult> racks;
+  // A dismissed job or a stopping server stops the tool that runs, not
+  // only the next mesh.
+  const ProgramStopScope stop_tools(o.cancelled);
   for (double size : sizes) {
     if (o.cancelled && o.cancelled()) throw FeFailed("the FE check was cancelled");
     char name[48];

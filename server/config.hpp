@@ -22,7 +22,12 @@ struct Limits {
   double max_particle_steps = 1e12;            // particles x steps: the work of a run
   std::uint64_t max_disk_bytes = 50ull << 30;  // estimated results on disk
   std::int64_t max_study_jobs = 100;           // jobs one POST /studies may create
-  int max_connections = 512;                   // open connections (503 above)
+  // A request (preview, submission, study) builds the whole scene only for
+  // jobs estimated (gearsph::estimate_job_size) at this many particles or
+  // fewer: about 5 s of set-up on one core (docs/api.md, Admission). Larger
+  // jobs are answered from the estimate and built by the worker that runs them.
+  std::int64_t max_built_particles = 200'000;
+  int max_connections = 512;  // open connections (503 above)
 };
 
 struct Timeouts {
@@ -31,6 +36,7 @@ struct Timeouts {
   std::chrono::milliseconds idle{60'000};    // keep-alive: waiting for the next request
   std::chrono::milliseconds write{60'000};   // a client that takes no bytes for this long
   std::chrono::milliseconds sse_keepalive{15'000};  // comment lines on quiet event streams
+  std::chrono::milliseconds build{20'000};  // a request's sizing and scene build (422 after)
 };
 
 struct ServerConfig {

@@ -1,5 +1,9 @@
 #include "server/http_session.hpp"
 
+#include <sys/socket.h>
+
+#include <cerrno>
+
 #include <boost/asio/dispatch.hpp>
 #include <boost/asio/post.hpp>
 #include <boost/asio/write.hpp>
@@ -18,6 +22,19 @@ namespace {
 constexpr std::chrono::seconds kLinger{2};
 constexpr std::size_t kLingerBytes = 16 << 20;
 
+// Whether the request line in `buffer` ends with "HTTP/" DIGIT "." DIGIT
+// (RFC 9112 section 2.3).
+bool well_formed_version(const beast::flat_buffer& buffer) {
+  const auto data = buffer.data();
+  std::string_view text(static_cast<const char*>(data.data()), data.size());
+  text = text.substr(0, text.find("\r\n"));
+  const auto space = text.rfind(' ');
+  if (space == std::string_view::npos) return false;
+  const std::string_view v = text.substr(space + 1);
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  return v.size() == 8 && v.substr(0, 5) == "HTTP/" && digit(v[5]) && v[6] == '.' && digit(v[7]);
+}
+
 }  // namespace
 
 HttpSession::HttpSession(tcp::socket&& socket, const Router& router, HandlerPools pools)
@@ -31,6 +48,7 @@ HttpSession::HttpSession(tcp::socket&& socket, const Router& router, HandlerPool
 
 HttpSession::~HttpSession() {
   --services_.connections;
+  if (streaming_) --services_.event_streams;
 }
 
 void HttpSession::run() {
@@ -93,8 +111,17 @@ void HttpSession::on_header(beast::error_code ec) {
                                  ""));
   }
   if (ec == http::error::bad_version) {
-    return refuse(problem::plain(http::status::http_version_not_supported,
-                                 "this server speaks HTTP/1.1 (and HTTP/1.0)", ""));
+    // Beast takes only 1.x: a well-formed other version (HTTP/2.0) gets
+    // 505; anything else is a malformed request line (RFC 9112 section
+    // 2.3), 400.
+    if (well_formed_version(buffer_)) {
+      return refuse(problem::plain(http::status::http_version_not_supported,
+                                   "this server speaks HTTP/1.1 (and HTTP/1.0)", ""));
+    }
+    return refuse(problem::plain(http::status::bad_request,
+                                 "the request line does not end with an HTTP version such as "
+                                 "HTTP/1.1",
+                                 ""));
   }
   if (ec) {
     return refuse(problem::plain(http::status::bad_request,
@@ -155,7 +182,14 @@ void HttpSession::dispatch() {
     return;
   }
   // Handlers that may block run on their pool; the answer comes back to
-  // this connection's strand.
+  // this connection's strand. Meanwhile nothing reads the socket: a peek
+  // tells whether the client closed it (0 bytes: an orderly close; an
+  // error: a reset), so that long work for nobody stops.
+  req->gone = [fd = stream_.socket().native_handle()] {
+    char c = 0;
+    const ssize_t n = ::recv(fd, &c, 1, MSG_PEEK | MSG_DONTWAIT);
+    return n == 0 || (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR);
+  };
   net::thread_pool& pool = lane == Lane::store ? pools_.store : pools_.slow;
   net::post(pool, [self = shared_from_this(), ex = stream_.get_executor(), req,
                    m = std::move(match)]() mutable {
@@ -171,6 +205,19 @@ void HttpSession::send(std::shared_ptr<Request> req, Response res) {
       [&](auto& m) {
         using M = std::decay_t<decltype(m)>;
         if constexpr (std::is_same_v<M, EventStream>) {
+          if (++services_.event_streams > services_.max_event_streams()) {
+            --services_.event_streams;
+            StringResponse busy = problem::plain(
+                http::status::service_unavailable,
+                "too many open event streams (" + std::to_string(services_.max_event_streams()) +
+                    ", half of --max-connections); try again shortly, or poll /jobs/{id}",
+                req->path);
+            busy.set(http::field::retry_after, "5");
+            busy.keep_alive(false);
+            write(std::make_shared<StringResponse>(std::move(busy)), true);
+            return;
+          }
+          streaming_ = true;
           chunked_ = req->msg.version() >= 11;
           start_events(std::move(m));
         } else {

@@ -82,6 +82,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   std::string pending_;  // text to send before the next events
   std::string chunk_;    // the chunk being written
   bool writing_ = false;
+  bool streaming_ = false;       // counted in Services::event_streams
   bool chunked_ = true;          // false for an HTTP/1.0 client: the events end with the connection
   bool final_snapshot_ = false;  // the status sent first was already final
   bool refreshing_ = false;      // a status snapshot is being read from the store

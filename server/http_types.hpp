@@ -3,6 +3,7 @@
 // segments, query parameters, route parameters) and one of three responses:
 // a string body, a streamed file, or the start of an event stream.
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -41,6 +42,9 @@ struct Request {
   std::vector<std::string> segments;                       // percent-decoded path segments
   std::vector<std::pair<std::string, std::string>> query;  // decoded, in order
   std::map<std::string, std::string> params;               // {name} parts of the route
+  // Whether the client has closed its connection while the handler runs
+  // (off the I/O threads); a handler doing long work stops then. Empty: never.
+  std::function<bool()> gone;
 
   std::string header(http::field f) const { return std::string(msg[f]); }
   std::optional<std::string> query_value(std::string_view name) const;

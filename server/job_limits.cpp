@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 
 #ifdef GEARSPH_WITH_RESULTS
 #include "results/results_writer.hpp"
@@ -34,30 +33,6 @@ std::string number(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.3g", v);
   return buf;
-}
-
-void collect_lengths(const nlohmann::json& j, std::vector<double>& out) {
-  if (!j.is_object()) return;
-  for (const auto& [key, value] : j.items()) {
-    if (value.is_object()) {
-      collect_lengths(value, out);
-      continue;
-    }
-    if (!value.is_number() || key.find("_per_") != std::string::npos) continue;
-    // A clearance (a gear's backlash, a tenth of a millimetre) is no body
-    // dimension: taken as the smallest length it would let a huge scene be
-    // built before its size is known.
-    if (key.find("backlash") != std::string::npos) continue;
-    const auto ends = [&](const std::string& s) {
-      return key.size() > s.size() && key.compare(key.size() - s.size(), s.size(), s) == 0;
-    };
-    const double v = value.get<double>();
-    if (ends("_mm")) {
-      out.push_back(v * 1e-3);
-    } else if (ends("_m")) {
-      out.push_back(v);
-    }
-  }
 }
 
 }  // namespace
@@ -137,40 +112,39 @@ std::vector<JobIssue> over_limits(const JobEstimate& e, const Limits& limits) {
   return issues;
 }
 
-std::string too_many_particles(double lower_bound, const Limits& limits) {
-  char buf[160];
-  std::snprintf(buf, sizeof buf,
-                "the job has at least %.3g particles; this server takes at most %lld: use a "
-                "coarser spacing",
-                lower_bound, static_cast<long long>(limits.max_particles));
-  return buf;
+JobEstimate estimate_job(const nlohmann::json& job, const JobSize& size) {
+  JobEstimate e;
+  e.particles = static_cast<std::int64_t>(size.particles);
+  e.steps = static_cast<std::int64_t>(size.steps);
+  const std::int64_t frames_asked = job.at("output").at("frames").get<std::int64_t>();
+  // As prepare_job counts them: frame 0, one every steps/frames, the last.
+  if (frames_asked > 0 && e.steps > 0) {
+    const std::int64_t every =
+        std::max<std::int64_t>(1, (e.steps + frames_asked - 1) / frames_asked);
+    e.frames = 1 + e.steps / every + (e.steps % every ? 1 : 0);
+  }
+  e.particle_steps = double(e.particles) * double(e.steps);
+  const double rows = std::min(double(kDefaultHistoryPoints), double(e.steps)) + 2;
+  const double columns = 2 * kRunnerColumns;  // the scene's own: at most as many again
+  const double h5 = double(e.frames) * double(e.particles) * kFrameBytesPerParticle;
+  e.disk_bytes =
+      static_cast<std::uint64_t>(h5 + rows * columns * (8 + kCsvBytesPerValue) + kFixedBytes);
+  e.output_s = output_seconds_of(job, e.particles, e.steps);
+  return e;
 }
 
-double particles_lower_bound(const nlohmann::json& job) {
-  if (!job.contains("discretization") || !job.contains("scene")) return 0.0;
-  const auto& d = job["discretization"];
-  double dx = 0.0;
-  if (d.contains("spacing_m") && d["spacing_m"].is_number()) dx = d["spacing_m"].get<double>();
-  if (d.contains("spacing_mm") && d["spacing_mm"].is_number())
-    dx = 1e-3 * d["spacing_mm"].get<double>();
-  if (!(dx > 0.0)) return 0.0;
-  std::vector<double> lengths;
-  collect_lengths(job["scene"], lengths);
-  lengths.erase(std::remove_if(lengths.begin(), lengths.end(),
-                               [](double v) { return !(v > 0.0) || !std::isfinite(v); }),
-                lengths.end());
-  if (lengths.empty()) return 0.0;
-  const auto [lo, hi] = std::minmax_element(lengths.begin(), lengths.end());
-  // A body spans at least its smallest by its largest in-plane length, up
-  // to the factor 4 kept for lengths that are not body dimensions.
-  return (*lo / dx) * (*hi / dx) / 4.0;
+bool within_build_budget(const JobSize& size, const Limits& limits) {
+  const double cost = size.body_fitted ? kBodyFittedBuildCost : 1.0;
+  return size.particles * cost <= double(limits.max_built_particles);
 }
 
 nlohmann::json limits_json(const Limits& limits) {
   return {{"particles", limits.max_particles},
           {"steps", limits.max_steps},
           {"particle_steps", limits.max_particle_steps},
-          {"disk_bytes", limits.max_disk_bytes}};
+          {"disk_bytes", limits.max_disk_bytes},
+          {"built_particles", limits.max_built_particles},
+          {"built_particle_cost_body_fitted", kBodyFittedBuildCost}};
 }
 
 }  // namespace gearsph::server

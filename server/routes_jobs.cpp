@@ -259,7 +259,7 @@ Response execute(Services& s, Request& req) {
 
   auto idem = idempotency_of(req, "jobs", request);
   if (auto* error = std::get_if<StringResponse>(&idem)) return std::move(*error);
-  auto admitted = admit_job(s, *job);
+  auto admitted = admit_job(s, *job, req.gone);
   if (auto* refusal = std::get_if<Refusal>(&admitted))
     return refusal_response(*refusal, req, prefix);
 

@@ -7,13 +7,19 @@
 #include "server/routes_preview.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <optional>
+#include <utility>
 
 #include "server/job_limits.hpp"
+#include "server/log.hpp"
 #include "server/problem.hpp"
 #include "server/submission.hpp"
 #include "solver/job/job.hpp"
+#include "solver/job/job_size.hpp"
 
 namespace gearsph::server::routes {
 
@@ -25,9 +31,9 @@ constexpr std::size_t kMaxListedParticles = 20000;
 constexpr std::int64_t kSpeedSampleJobs = 20;
 // Runs shorter than this are mostly start-up and would understate the speed.
 constexpr double kMinSampleWall_s = 1.0;
-// Used before this server has finished a job: the rack-and-pinion case
-// (651 particles, total Lagrangian, 2 threads) on a 2-core machine ran at
-// 4.8e4 particle-steps per second.
+// Used when neither a finished job nor the calibration gives a speed: the
+// rack-and-pinion case (651 particles, total Lagrangian, 2 threads) on a
+// 2-core machine ran at 4.8e4 particle-steps per second.
 constexpr double kFallbackParticleStepsPerSecond = 5e4;
 
 double rounded(double v, double quantum) {
@@ -54,14 +60,21 @@ nlohmann::json run_time_estimate(Services& s, const JobEstimate& estimate) {
     ++used;
   }
   const bool measured = used > 0 && wall > 0 && work > 0;
-  const double speed = measured ? work / wall : kFallbackParticleStepsPerSecond;
+  // Before a finished job: the speed this server measured of itself.
+  const SpeedCalibration& calibration = measured ? SpeedCalibration{} : s.calibration();
+  const bool calibrated = !measured && calibration.particle_steps_per_s > 0;
+  const double speed = measured     ? work / wall
+                       : calibrated ? calibration.particle_steps_per_s
+                                    : kFallbackParticleStepsPerSecond;
   const double compute_s = estimate.particle_steps / speed;
   nlohmann::json e = {
       {"wall_s", compute_s + estimate.output_s},
       {"compute_s", compute_s},
       {"output_s", estimate.output_s},
       {"particle_steps_per_s", speed},
-      {"basis", measured ? "measured" : "fallback"},
+      {"basis", measured     ? "measured"
+                : calibrated ? "calibrated"
+                             : "fallback"},
       {"jobs_measured", used},
       {"threads_per_job", s.config.threads_per_job},
   };
@@ -72,6 +85,14 @@ nlohmann::json run_time_estimate(Services& s, const JobEstimate& estimate) {
                   "successful job%s, plus writing %lld frames and the histories; time in the "
                   "queue not included",
                   speed, used, used == 1 ? "" : "s", static_cast<long long>(estimate.frames));
+  } else if (calibrated) {
+    std::snprintf(note, sizeof note,
+                  "estimate: %.3g particle-steps per second, this server's own speed on the "
+                  "seed paper's case (%.0f particles, %.0f steps in %.2f s, measured at its first "
+                  "preview), plus writing %lld frames and the histories; time in the queue not "
+                  "included",
+                  speed, calibration.particles, calibration.steps, calibration.wall_s,
+                  static_cast<long long>(estimate.frames));
   } else {
     std::snprintf(note, sizeof note,
                   "estimate: %.3g particle-steps per second, a figure measured on a 2-core "
@@ -83,7 +104,7 @@ nlohmann::json run_time_estimate(Services& s, const JobEstimate& estimate) {
   return e;
 }
 
-nlohmann::json describe(Services& s, const PreparedJob& job, const JobEstimate& estimate) {
+nlohmann::json describe(const PreparedJob& job, const JobEstimate& estimate) {
   const Simulation& sim = job.scene.sim;
   const Particles& p = sim.particles;
   nlohmann::json bodies = nlohmann::json::array();
@@ -141,7 +162,7 @@ nlohmann::json describe(Services& s, const PreparedJob& job, const JobEstimate& 
       {"bounds_m", {x0, y0, x1, y1}},
       {"outlines", std::move(outlines)},
       {"model", job.scene.description},
-      {"run_time", run_time_estimate(s, estimate)},
+      {"built", true},
       {"job", job.job},
   };
   if (p.n <= kMaxListedParticles) {
@@ -165,40 +186,98 @@ nlohmann::json describe(Services& s, const PreparedJob& job, const JobEstimate& 
   return out;
 }
 
+// A job beyond the build budget: its size from the solver's estimate,
+// without bodies, outlines or particles.
+nlohmann::json describe_estimate(const nlohmann::json& job, const JobSize& size,
+                                 const JobEstimate& estimate, const Limits& limits) {
+  const nlohmann::json& d = job.at("discretization");
+  return {
+      {"scene", job.at("scene").at("type")},
+      {"name", job.at("name")},
+      {"built", false},
+      {"particles", estimate.particles},
+      {"steps", estimate.steps},
+      {"frames", estimate.frames},
+      {"particle_steps", estimate.particle_steps},
+      {"disk_bytes", estimate.disk_bytes},
+      {"end_s", size.end_s},
+      {"spacing_m", d.contains("spacing_m")    ? d.at("spacing_m").get<double>()
+                    : d.contains("spacing_mm") ? 1e-3 * d.at("spacing_mm").get<double>()
+                                               : 0.0},
+      {"estimate", size.to_json()},
+      {"build_budget_particles", limits.max_built_particles},
+      {"points", nullptr},
+      {"points_omitted", "about " + std::to_string(estimate.particles) +
+                             std::string(size.body_fitted ? " body-fitted" : "") +
+                             " particles, more than this server builds for a preview "
+                             "(--build-budget): counts estimated from coarser copies of the "
+                             "job, no geometry"},
+      {"job", job},
+  };
+}
+
+// The preview of a valid job, before the run-time estimate: built within
+// the build budget, else estimated.
+std::pair<nlohmann::json, JobEstimate> preview_of(const nlohmann::json& job, const Limits& limits) {
+  const JobSize size = estimate_job_size(job);
+  const JobEstimate estimated = estimate_job(job, size);
+  const bool build = within_build_budget(size, limits) && over_limits(estimated, limits).empty();
+  std::shared_ptr<const PreparedJob> prepared = size.built;
+  if (build && !prepared) prepared = std::make_shared<const PreparedJob>(prepare_job(job, 1));
+  const JobEstimate estimate = prepared ? estimate_job(*prepared) : estimated;
+  nlohmann::json doc =
+      prepared ? describe(*prepared, estimate) : describe_estimate(job, size, estimated, limits);
+  // A preview of a job this server would refuse still shows what it can,
+  // and says why it would be refused, at the fields concerned.
+  doc["accepted"] = true;
+  doc["valid"] = true;
+  doc["errors"] = nlohmann::json::array();
+  if (auto over = over_limits(estimate, limits); !over.empty()) {
+    doc["accepted"] = false;
+    doc["errors"] = problem::errors(over);
+    doc["limits"] = limits_json(limits);
+  }
+  return {std::move(doc), estimate};
+}
+
+nlohmann::json refused(const std::string& pointer, const std::string& message) {
+  return {{"accepted", false}, {"valid", true}, {"errors", problem::errors({{pointer, message}})}};
+}
+
 }  // namespace
 
 Response preview(Services& s, Request& req) {
   auto body = read_json_body(req);
-  if (auto* refused = std::get_if<StringResponse>(&body)) return std::move(*refused);
+  if (auto* refusal = std::get_if<StringResponse>(&body)) return std::move(*refusal);
   const nlohmann::json& raw = std::get<nlohmann::json>(body);
   const Limits& limits = s.config.limits;
   try {
     const nlohmann::json job = validate_job(raw);
-    const double lower = particles_lower_bound(job);
-    if (lower > double(limits.max_particles)) {
-      const std::string buf = too_many_particles(lower, limits);
-      // Too large to build here: the reason, without geometry.
-      return json_response(http::status::ok,
-                           {{"accepted", false},
-                            {"valid", true},
-                            {"errors", problem::errors({{"/discretization", buf}})},
-                            {"estimate", {{"particles_at_least", lower}}},
-                            {"limits", limits_json(limits)}});
+    // What POST /jobs refuses with 501 is no preview either.
+    if (auto fe = fe_refusal(s, job)) {
+      return json_response(http::status::ok, refused(fe->issues[0].pointer, fe->issues[0].message));
     }
-    const PreparedJob prepared = prepare_job(job, 1);
-    const JobEstimate estimate = estimate_job(prepared);
-    nlohmann::json doc = describe(s, prepared, estimate);
-    // A preview of a job this server would refuse still shows its geometry,
-    // and says why it would be refused, at the fields concerned.
-    doc["accepted"] = true;
-    doc["valid"] = true;
-    doc["errors"] = nlohmann::json::array();
-    if (auto over = over_limits(estimate, limits); !over.empty()) {
-      doc["accepted"] = false;
-      doc["errors"] = problem::errors(over);
-      doc["limits"] = limits_json(limits);
+    const std::string key = job.dump();
+    std::optional<nlohmann::json> doc = s.previews.find(key);
+    const bool cached = doc.has_value();
+    if (!doc) {
+      const SetupStop stop(std::chrono::steady_clock::now() + s.config.timeouts.build, req.gone);
+      auto [built, estimate] = preview_of(job, limits);
+      built["run_time_basis"] = {{"particle_steps", estimate.particle_steps},
+                                 {"output_s", estimate.output_s},
+                                 {"frames", estimate.frames}};
+      s.previews.put(key, built);
+      doc = std::move(built);
     }
-    return json_response(http::status::ok, doc);
+    // The run time from this server's speed now, not when the answer was kept.
+    JobEstimate e;
+    e.particle_steps = doc->at("run_time_basis").at("particle_steps").get<double>();
+    e.output_s = doc->at("run_time_basis").at("output_s").get<double>();
+    e.frames = doc->at("run_time_basis").at("frames").get<std::int64_t>();
+    doc->erase("run_time_basis");
+    (*doc)["run_time"] = run_time_estimate(s, e);
+    (*doc)["cached"] = cached;
+    return json_response(http::status::ok, *doc);
   } catch (const InvalidJob& e) {
     // The preview of an invalid job is its list of problems: a page checking
     // a form as it is typed gets an answer, not an error, for each keystroke.
@@ -207,6 +286,12 @@ Response preview(Services& s, Request& req) {
                                             {"title", "Invalid job"},
                                             {"type", problem::kInvalidJob},
                                             {"errors", problem::errors(e.issues)}});
+  } catch (const SetupStopped& e) {
+    log_line(LogLevel::info, "gearsph serve: POST /preview: stopped: %s\n", e.what());
+    return json_response(
+        http::status::ok,
+        refused("/discretization", std::string(e.what()) + ": the scene is too large to preview "
+                                                           "within this server's build timeout"));
   }
 }
 

@@ -6,6 +6,7 @@
 
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <thread>
 
 #include <boost/asio/ip/address.hpp>
@@ -169,11 +170,21 @@ void Server::wait_for_signal() {
   signals_.async_wait([this](boost::system::error_code ec, int signal) {
     if (ec) return;
     const char* name = signal == SIGINT ? "SIGINT" : "SIGTERM";
-    bool again = false;
+    bool again = false, force = false;
     {
       std::lock_guard<std::mutex> lock(mutex_);
       again = stop_requested_;
+      // A signal once the running jobs are already being stopped (no warm
+      // shutdown, or a second signal cut it short): exit now. The store is
+      // as safe as after a SIGKILL (every change a transaction; interrupted
+      // jobs go back to the queue at the next start), and the FE tools die
+      // with their parent (fe/external_program.hpp).
+      force = again && (hurry_ || config_.job_grace.count() == 0);
       if (again) hurry_ = true;
+    }
+    if (force) {
+      log_line(LogLevel::warning, "gearsph serve: %s again: exiting without waiting\n", name);
+      std::_Exit(128 + signal);
     }
     log_line(LogLevel::info, "gearsph serve: %s: %s\n", name,
              again ? "stopping the running jobs now" : "stopping");

@@ -2,6 +2,7 @@
 // What request handlers work with: the configuration, the job store, the
 // workers (for live progress and cancellation) and the event hub. Owned by
 // the Server; handlers receive it by reference.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <filesystem>
@@ -17,6 +18,8 @@
 #include "server/event_hub.hpp"
 #include "server/image_cache.hpp"
 #include "server/job_store.hpp"
+#include "server/preview_cache.hpp"
+#include "server/speed_calibration.hpp"
 
 namespace gearsph::server {
 
@@ -35,11 +38,27 @@ struct Services {
   EventHub& hub;
   std::filesystem::path jobs_dir;
   ImageCache images;  // rendered images, outside the job directories
+  // Previews by job: 16 MB holds a few dozen with their particles listed.
+  PreviewCache previews{16u << 20};
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
   std::atomic<int> connections{0};
+  // Open event streams: at most half the connections (max_event_streams),
+  // so that idle streams never lock out the requests.
+  std::atomic<int> event_streams{0};
+  int max_event_streams() const { return std::max(1, config.limits.max_connections / 2); }
   std::atomic<std::int64_t> requests{0};
   std::atomic<bool> stopping{false};    // shutting down: no more keep-alive
   std::atomic<unsigned short> port{0};  // the port listened on (known once bound)
+
+  // This machine's speed, measured once, by the first caller (a preview
+  // before any job has finished); the callers at the same time wait for it.
+  const SpeedCalibration& calibration() {
+    std::call_once(calibration_once_, [this] {
+      calibration_ =
+          calibrate_speed(std::max(1, config.threads_per_job), [this] { return stopping.load(); });
+    });
+    return calibration_;
+  }
 
   // The directory whose files are the job's (attempt_dirs.hpp).
   std::filesystem::path job_dir(const JobRecord& job) const { return results_dir(jobs_dir, job); }
@@ -87,6 +106,8 @@ struct Services {
   }
 
  private:
+  std::once_flag calibration_once_;
+  SpeedCalibration calibration_;
   mutable std::mutex counts_mutex_;
   std::string store_error_;
   std::chrono::steady_clock::time_point store_down_since_;

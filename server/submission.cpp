@@ -1,13 +1,17 @@
 #include "server/submission.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "server/documents.hpp"
 #include "server/job_limits.hpp"
 #include "server/problem.hpp"
 #include "solver/job/job.hpp"
+#include "solver/job/job_size.hpp"
 
 namespace gearsph::server {
 
@@ -141,6 +145,13 @@ std::variant<nlohmann::json, StringResponse> read_json_body(const Request& req) 
   p.type = problem::kMalformedJson;
   p.title = "Malformed JSON";
   p.instance = req.path;
+  // JSON text has no raw NUL (RFC 8259 section 7: control characters are
+  // escaped); the parser would stop at one and read the rest as absent.
+  if (const auto nul = body.find('\0'); nul != std::string::npos) {
+    p.detail = "the body holds a NUL byte at offset " + std::to_string(nul) +
+               "; JSON text escapes control characters (\\u0000)";
+    return problem::make(p);
+  }
   if (nested_too_deep(body)) {
     p.detail = "the body nests objects or arrays more than " + std::to_string(kMaxJsonDepth) +
                " levels deep";
@@ -192,56 +203,83 @@ std::variant<std::optional<Idempotency>, StringResponse> idempotency_of(
   return std::optional<Idempotency>(Idempotency{scope, key, body.dump()});
 }
 
-std::variant<NewJob, Refusal> admit_job(const Services& services, const nlohmann::json& raw) {
+// The FE check after the run needs gmsh and CalculiX here (or on the
+// workers, which run the same build): refused now, not after the run.
+std::optional<Refusal> fe_refusal(const Services& services, const nlohmann::json& job) {
+  if (!job.at("scene").value("fe_check", false)) return std::nullopt;
+  const std::string why = services.config.fe_check_unavailable
+                              ? services.config.fe_check_unavailable()
+                              : "FE unavailable: this service was built without the FE layer";
+  if (why.empty()) return std::nullopt;
+  return Refusal{http::status::not_implemented,
+                 problem::kFeUnavailable,
+                 "FE check unavailable",
+                 {{"/scene/fe_check", why}}};
+}
+
+namespace {
+
+Refusal too_large(std::vector<JobIssue> over, const JobEstimate& e, const JobSize& size,
+                  const Limits& limits) {
+  Refusal r{http::status::unprocessable_entity, problem::kJobTooLarge, "Job too large",
+            std::move(over)};
+  r.extra["estimate"] = e.to_json();
+  r.extra["estimate"]["basis"] = size.to_json();
+  r.extra["limits"] = limits_json(limits);
+  return r;
+}
+
+NewJob new_job(const nlohmann::json& job, const JobEstimate& e, double end_s) {
+  NewJob out;
+  out.id = new_id();
+  out.name = job.at("name").get<std::string>();
+  out.job_json = job.dump();
+  out.particles = e.particles;
+  out.steps = e.steps;
+  out.end_s = end_s;
+  return out;
+}
+
+}  // namespace
+
+std::variant<NewJob, Refusal> admit_job(const Services& services, const nlohmann::json& raw,
+                                        const std::function<bool()>& gone) {
   const Limits& limits = services.config.limits;
   try {
     const nlohmann::json job = validate_job(raw);
-    // The FE check after the run needs gmsh and CalculiX here (or on the
-    // workers, which run the same build): refused now, not after the run.
-    if (job.at("scene").value("fe_check", false)) {
-      const std::string why = services.config.fe_check_unavailable
-                                  ? services.config.fe_check_unavailable()
-                                  : "FE unavailable: this service was built without the FE layer";
-      if (!why.empty()) {
-        return Refusal{http::status::not_implemented,
-                       problem::kFeUnavailable,
-                       "FE check unavailable",
-                       {{"/scene/fe_check", why}}};
-      }
+    if (auto refused = fe_refusal(services, job)) return *refused;
+    // Sized first, from coarse copies (milliseconds), so that a job too
+    // large for this server, or for a request, is never built here; the
+    // build stops at the deadline or when the client leaves.
+    const SetupStop stop(std::chrono::steady_clock::now() + services.config.timeouts.build, gone);
+    const JobSize size = estimate_job_size(job);
+    const JobEstimate estimated = estimate_job(job, size);
+    if (auto over = over_limits(estimated, limits); !over.empty()) {
+      return too_large(std::move(over), estimated, size, limits);
     }
-    const double lower = particles_lower_bound(job);
-    if (lower > double(limits.max_particles)) {
-      const std::string buf = too_many_particles(lower, limits);
-      Refusal r{http::status::unprocessable_entity,
-                problem::kJobTooLarge,
-                "Job too large",
-                {{"/discretization", buf}}};
-      r.extra["estimate"] = {{"particles_at_least", lower}};
-      r.extra["limits"] = limits_json(limits);
-      return r;
+    // Beyond the build budget the worker that runs the job builds it.
+    if (!within_build_budget(size, limits)) {
+      return new_job(job, estimated, size.end_s);
     }
     // One thread: preparation measures the stable step, and the handler
     // threads must not compete with the running jobs for every core.
-    const PreparedJob prepared = prepare_job(job, 1);
-    const JobEstimate estimate = estimate_job(prepared);
-    auto over = over_limits(estimate, limits);
-    if (!over.empty()) {
-      Refusal r{http::status::unprocessable_entity, problem::kJobTooLarge, "Job too large",
-                std::move(over)};
-      r.extra["estimate"] = estimate.to_json();
-      r.extra["limits"] = limits_json(limits);
-      return r;
+    const std::shared_ptr<const PreparedJob> prepared =
+        size.built ? size.built : std::make_shared<const PreparedJob>(prepare_job(job, 1));
+    const JobEstimate estimate = estimate_job(*prepared);
+    if (auto over = over_limits(estimate, limits); !over.empty()) {
+      return too_large(std::move(over), estimate, size, limits);
     }
-    NewJob out;
-    out.id = new_id();
-    out.name = prepared.job.at("name").get<std::string>();
-    out.job_json = prepared.job.dump();
-    out.particles = estimate.particles;
-    out.steps = estimate.steps;
-    out.end_s = prepared.end_s;
-    return out;
+    return new_job(prepared->job, estimate, prepared->end_s);
   } catch (const InvalidJob& e) {
     return Refusal{http::status::bad_request, problem::kInvalidJob, "Invalid job", e.issues};
+  } catch (const SetupStopped& e) {
+    return Refusal{
+        http::status::unprocessable_entity,
+        problem::kJobTooLarge,
+        "Job too large to prepare",
+        {{"/discretization", std::string(e.what()) + " (this server allows " +
+                                 std::to_string(services.config.timeouts.build.count() / 1000.0) +
+                                 " s): use a coarser spacing"}}};
   }
 }
 

@@ -2,6 +2,7 @@
 // The steps every submission shares (POST /jobs, /processes/.../execution,
 // /studies): a JSON body, an optional Idempotency-Key, and admission of a
 // job: schema check, scene built to count particles and steps, limits.
+#include <functional>
 #include <optional>
 #include <string>
 #include <variant>
@@ -33,9 +34,15 @@ struct Refusal {
   nlohmann::json extra = nlohmann::json::object();  // estimate and limits
 };
 
-// Validates and prepares `job` (off the I/O threads: this builds the scene)
-// and checks the size limits.
-std::variant<NewJob, Refusal> admit_job(const Services& services, const nlohmann::json& job);
+// 501 for a job asking for the FE check where gmsh or CalculiX is missing
+// (`job` validated); nullopt when it can run.
+std::optional<Refusal> fe_refusal(const Services& services, const nlohmann::json& job);
+
+// Validates `job`, sizes it (gearsph::estimate_job_size) and checks the
+// size limits; builds the scene (off the I/O threads) only within the build
+// budget (Limits::max_built_particles), until the build timeout or `gone()`.
+std::variant<NewJob, Refusal> admit_job(const Services& services, const nlohmann::json& job,
+                                        const std::function<bool()>& gone = {});
 
 // The problem answer for a refusal. `prefix` locates the job in the request
 // body for the error pointers (e.g. "/inputs/job"); `context` starts each

@@ -5,8 +5,13 @@
 // mesh convergence. Coarse meshes keep it to seconds. Tests that need gmsh
 // and ccx skip, saying why, where they are missing.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +19,7 @@
 #include <fstream>
 #include <numbers>
 #include <sstream>
+#include <thread>
 
 #include "fe/calculix_solver.hpp"
 #include "fe/external_program.hpp"
@@ -268,6 +274,88 @@ TEST(FeTools, ProgramsRunInTheirDirectoryAndAreStoppedAtTheTimeout) {
   EXPECT_LT(slow.wall_s, 5.0);
   run.program = "/nonexistent/program";
   EXPECT_THROW(run_program(run), FeFailed);
+}
+
+using namespace std::chrono_literals;
+
+// A process that exists and is not a zombie (an orphan's zombie stays until
+// its new parent reaps it, which a container's init may never do).
+bool alive(pid_t pid) {
+  if (::kill(pid, 0) != 0) return false;
+  const std::string stat = slurp("/proc/" + std::to_string(pid) + "/stat");
+  const auto close = stat.rfind(')');
+  return close == std::string::npos || close + 2 >= stat.size() || stat[close + 2] != 'Z';
+}
+
+// N2: a hung tool (a stand-in shell script that never ends, with a child
+// of its own) is stopped, group and all, once its caller's stop says so.
+TEST(FeTools, AHungToolStopsWhenAsked) {
+  WorkDir dir("gearsph-fe-test-");
+  ProgramRun run;
+  run.program = "/bin/sh";
+  run.args = {"-c", "sleep 300 & echo $! > child.pid; wait"};
+  run.work_dir = dir.path();
+  run.log = dir.path() / "log";
+  run.timeout_s = 300;
+  std::atomic<bool> stop{false};
+  std::thread asker([&] {
+    // Asked once the stand-in has started its child.
+    while (!fs::exists(dir.path() / "child.pid")) std::this_thread::sleep_for(10ms);
+    std::this_thread::sleep_for(100ms);
+    stop = true;
+  });
+  {
+    const ProgramStopScope scope([&] { return stop.load(); });
+    EXPECT_THROW(run_program(run), ProgramStopped);
+  }
+  asker.join();
+  const pid_t child = std::stoi(slurp(dir.path() / "child.pid"));
+  std::this_thread::sleep_for(100ms);
+  EXPECT_FALSE(alive(child)) << "the tool's own child outlived the stop";
+}
+
+// N3: a process killed with SIGKILL while its tool runs takes the tool
+// with it (the parent-death signal), and its work folder is removed by the
+// next start.
+TEST(FeTools, AToolDiesWithItsParentAndItsFolderIsRemovedLater) {
+  WorkDir scratch("gearsph-test-scratch-");
+  const fs::path pid_file = scratch.path() / "tool.pid";
+  fs::path folder;
+  const pid_t parent = ::fork();
+  ASSERT_GE(parent, 0);
+  if (parent == 0) {
+    WorkDir work("gearsph-fe-");
+    ProgramRun run;
+    run.program = "/bin/sh";
+    run.args = {"-c", "echo $$ > " + pid_file.string() + ".tmp; mv " + pid_file.string() + ".tmp " +
+                          pid_file.string() + "; exec sleep 300"};
+    run.work_dir = work.path();
+    run.log = work.path() / "log";
+    run.timeout_s = 300;
+    std::ofstream(scratch.path() / "folder") << work.path().string();
+    run_program(run);
+    ::_exit(0);
+  }
+  const auto until = std::chrono::steady_clock::now() + 30s;
+  while (!fs::exists(pid_file) && std::chrono::steady_clock::now() < until) {
+    std::this_thread::sleep_for(10ms);
+  }
+  ASSERT_TRUE(fs::exists(pid_file));
+  const pid_t tool = std::stoi(slurp(pid_file));
+  folder = slurp(scratch.path() / "folder");
+  ::kill(parent, SIGKILL);
+  int status = 0;
+  ::waitpid(parent, &status, 0);
+  // The tool is not our child: it is gone once kill(tool, 0) fails.
+  bool gone = false;
+  for (int i = 0; i < 500 && !gone; ++i) {
+    gone = !alive(tool);
+    if (!gone) std::this_thread::sleep_for(10ms);
+  }
+  EXPECT_TRUE(gone) << "the tool outlived its parent";
+  ASSERT_TRUE(fs::exists(folder));
+  EXPECT_GE(remove_stale_work_dirs("gearsph-fe-"), 1);
+  EXPECT_FALSE(fs::exists(folder));
 }
 
 // ------------------------------------------------------------ elasticity --

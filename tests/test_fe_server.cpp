@@ -2,7 +2,11 @@
 // 501 where gmsh or CalculiX is missing, with 400 where it does not apply,
 // and run (its fe_comparison in the summary, its files beside the run's)
 // where the tools are.
+#include <signal.h>
+
 #include <cstdlib>
+#include <fstream>
+#include <thread>
 
 #include "fe/external_program.hpp"
 #include "tests/test_server_support.hpp"
@@ -43,6 +47,49 @@ TEST(ServerFe, JobsAskingForTheCheckWithoutTheToolsAnswer501) {
   EXPECT_EQ(d.json().at("errors").at(0).at("pointer"), "/scene/fe_check");
   // Jobs without the check are taken as before.
   EXPECT_EQ(c.post_json("/jobs", tiny_job().dump()).status, 201u);
+  // N7: the preview says the same, rather than previewing a job POST /jobs refuses.
+  const json preview = c.post_json("/preview", static_gear_job(1e-4).dump()).json();
+  EXPECT_FALSE(preview.at("accepted").get<bool>()) << preview.dump();
+  EXPECT_EQ(preview.at("errors").at(0).at("pointer"), "/scene/fe_check");
+}
+
+// N2: a hung gmsh (a stand-in script that never ends) is stopped when its
+// job is dismissed, not after the tool's 300 s timeout.
+TEST(ServerFe, DismissingAJobStopsAHungTool) {
+  TempDir dir;
+  const fs::path pid_file = dir.path() / "gmsh.pid";
+  const fs::path script = dir.path() / "gmsh";
+  std::ofstream(script) << "#!/bin/sh\necho $$ > " << pid_file.string() << ".tmp\nmv "
+                        << pid_file.string() << ".tmp " << pid_file.string()
+                        << "\nexec sleep 300\n";
+  fs::permissions(script, fs::perms::owner_all);
+  ::setenv("GEARSPH_GMSH", script.c_str(), 1);
+  ::setenv("GEARSPH_CCX", "/bin/true", 1);
+  ServerProcess server({"--threads-per-job", "1"});
+  ::unsetenv("GEARSPH_GMSH");
+  ::unsetenv("GEARSPH_CCX");
+  auto c = server.client();
+  const std::string id = submit(c, static_gear_job(2e-4));
+  ASSERT_FALSE(id.empty());
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(300);
+  while (!fs::exists(pid_file) && std::chrono::steady_clock::now() < until) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_TRUE(fs::exists(pid_file)) << server.log();
+  const pid_t tool = std::stoi(slurp(pid_file));
+  ASSERT_EQ(::kill(tool, 0), 0);
+  EXPECT_EQ(c.request("DELETE", "/jobs/" + id).status, 200u);
+  // Gone well before the tool's timeout; a zombie (its parent, the server,
+  // reaps it) counts as gone.
+  bool gone = false;
+  for (int i = 0; i < 200 && !gone; ++i) {
+    const std::string stat = slurp("/proc/" + std::to_string(tool) + "/stat");
+    gone = stat.empty() || stat.find(") Z") != std::string::npos;
+    if (!gone) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_TRUE(gone) << "the stand-in gmsh still runs 20 s after the DELETE";
+  const json final = wait_final(c, id, std::chrono::seconds(60));
+  EXPECT_EQ(final.at("status"), "dismissed") << final.dump();
 }
 
 TEST(ServerFe, TheWorkerRunsTheCheckAfterTheRun) {

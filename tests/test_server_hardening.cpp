@@ -142,6 +142,17 @@ TEST(ServerHosts, AnyHostWithAStar) {
 
 // 8. RFC 9112 section 6.1: a transfer coding the server does not know is
 // 501, not read as if it were absent.
+// N10: a raw NUL in a body is an error, not the end of the body.
+TEST_F(ServerHardening, ARawNulInABodyIsRefused) {
+  auto c = server_->client();
+  const std::string body = std::string("{\"scene\": {\"type\": \"plate\"}}") + '\0' + "junk";
+  for (const char* target : {"/jobs", "/preview"}) {
+    const ClientResponse r = c.post_json(target, body);
+    EXPECT_EQ(r.status, 400u) << target << ": " << r.body;
+    EXPECT_NE(r.body.find("NUL byte at offset 28"), std::string::npos) << r.body;
+  }
+}
+
 TEST_F(ServerHardening, UnknownTransferCodingsAre501) {
   auto c = server_->client();
   const auto before = c.get("/jobs").json().at("numberMatched").get<int>();
@@ -196,6 +207,13 @@ TEST_F(ServerHardening, HttpVersionsAndControlCharactersInPaths) {
   EXPECT_EQ(status_line(raw(*server_, "GET /health HTTP/2.0\r\nHost: 127.0.0.1:" + server_->port() +
                                           "\r\n\r\n")),
             "HTTP/1.1 505 HTTP Version Not Supported");
+  // N5: a request line whose version is not HTTP/d.d is malformed: 400, not 505.
+  for (const char* line : {"GET /health HTTP/1.x", "GET /health FOO/1.1", "GET /health HTTP/11"}) {
+    EXPECT_EQ(status_line(raw(*server_, std::string(line) +
+                                            "\r\nHost: 127.0.0.1:" + server_->port() + "\r\n\r\n")),
+              "HTTP/1.1 400 Bad Request")
+        << line;
+  }
   const ClientResponse nul = c.get("/health%00");
   EXPECT_EQ(nul.status, 400u);
   const std::string detail = nul.json().at("detail");

@@ -55,6 +55,52 @@ TEST(ServerLifecycle, SigkillAfterMaxAttemptsFails) {
   expect_consistent_store(server.data());
 }
 
+// N2: a second SIGTERM while the first is still waiting (here for an idle
+// kept-alive connection, up to the 3 s shutdown grace) exits at once.
+TEST(ServerLifecycle, ASecondSigtermForcesTheExit) {
+  ServerProcess server({"--workers", "1", "--threads-per-job", "1"});
+  auto c = server.client();
+  ASSERT_EQ(c.get("/health").status, 200u);  // the connection stays open
+  ::kill(server.pid(), SIGTERM);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  EXPECT_EQ(server.stop(SIGTERM), 128 + SIGTERM) << server.log();
+  EXPECT_NE(server.log().find("SIGTERM again: exiting without waiting"), std::string::npos)
+      << server.log();
+}
+
+// N11: idle event streams take at most half the connections: the rest
+// still answer requests.
+TEST(ServerLifecycle, EventStreamsCannotTakeEveryConnection) {
+  ServerProcess server({"--max-connections", "4", "--no-local-workers"});
+  auto c = server.client();
+  // A queued job's stream starts with its status.
+  const std::string id = submit(c, tiny_job());
+  std::vector<std::jthread> streams;
+  std::atomic<int> opened{0};
+  for (int i = 0; i < 2; ++i) {
+    streams.emplace_back([&] {
+      try {
+        auto wc = server.client(std::chrono::seconds(60));
+        wc.events("/jobs/" + id + "/events", [&](const SseEvent&) {
+          ++opened;
+          return true;
+        });
+      } catch (const std::exception&) {
+        // Ended by the server's stop.
+      }
+    });
+  }
+  for (int i = 0; i < 400 && opened < 2; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_GE(opened.load(), 2) << "the two streams did not start";
+  const ClientResponse third = server.client().get("/jobs/" + id + "/events");
+  EXPECT_EQ(third.status, 503u) << third.body;
+  EXPECT_FALSE(third.header("Retry-After").empty());
+  EXPECT_EQ(c.get("/health").status, 200u);
+  server.stop(SIGTERM);
+}
+
 TEST(ServerLifecycle, SigtermStopsGracefullyAndRequeues) {
   ServerProcess server({"--workers", "1", "--threads-per-job", "1"});
   auto c = server.client();

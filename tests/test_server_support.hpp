@@ -154,6 +154,7 @@ class ServerProcess {
   }
 
   bool running() const { return pid_ > 0; }
+  pid_t pid() const { return pid_; }
   const std::string& host() const { return host_; }
   const std::string& port() const { return port_; }
   std::string url() const { return "http://" + host_ + ":" + port_; }

@@ -1,5 +1,9 @@
 // The server's parts on their own: job store, studies, ranges, targets,
 // event hub, token comparison.
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <atomic>
 #include <thread>
 
@@ -8,6 +12,7 @@
 #include "server/http_types.hpp"
 #include "server/job_limits.hpp"
 #include "server/job_store.hpp"
+#include "server/log.hpp"
 #include "server/range_file.hpp"
 #include "server/router.hpp"
 #include "server/static_files.hpp"
@@ -353,6 +358,37 @@ TEST(ServerEventHub, FiltersResumesAndReportsGaps) {
   EXPECT_EQ(hub.subscribers(), 0u);
   hub.close();
   EXPECT_TRUE(hub.closed());
+}
+
+}  // namespace
+}  // namespace gearsph::server::testing
+
+namespace gearsph::server::testing {
+namespace {
+
+// N4: a string from a request (a job's name) with a newline and an escape
+// code cannot forge a second log line or reach the terminal raw.
+TEST(ServerLog, ControlCharactersAreEscaped) {
+  TempDir dir;
+  const fs::path file = dir.path() / "stderr";
+  std::fflush(stderr);
+  const int saved = ::dup(2);
+  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  ASSERT_GE(fd, 0);
+  ::dup2(fd, 2);
+  const std::string name = "x\n2026-01-01T00:00:00.000Z ERROR forged\x1b[31m\r\\";
+  log_line(LogLevel::info, "gearsph serve: job %s\n", name.c_str());
+  std::fflush(stderr);
+  ::dup2(saved, 2);
+  ::close(saved);
+  ::close(fd);
+  const std::string text = slurp(file);
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+  EXPECT_EQ(text.find('\x1b'), std::string::npos);
+  EXPECT_EQ(text.find('\r'), std::string::npos);
+  EXPECT_NE(text.find("job x\\n2026-01-01T00:00:00.000Z ERROR forged\\x1b[31m\\r\\\\\n"),
+            std::string::npos)
+      << text;
 }
 
 }  // namespace

@@ -119,6 +119,8 @@ int cmd_serve(Args& args) {
   l.max_study_jobs = static_cast<std::int64_t>(
       number_option(args, "max-study-jobs", static_cast<double>(l.max_study_jobs)));
   l.max_connections = args.integer("max-connections", l.max_connections);
+  l.max_built_particles = static_cast<std::int64_t>(
+      number_option(args, "build-budget", static_cast<double>(l.max_built_particles)));
   if (auto v = args.option("image-cache-mb")) {
     std::size_t used = 0;
     double mb = -1;
@@ -138,6 +140,7 @@ int cmd_serve(Args& args) {
   t.idle = seconds_option(args, "idle-timeout", t.idle);
   t.write = seconds_option(args, "write-timeout", t.write);
   t.sse_keepalive = seconds_option(args, "keepalive", t.sse_keepalive);
+  t.build = seconds_option(args, "build-timeout", t.build);
   if (!args.positional().empty()) throw std::invalid_argument("serve takes no file arguments");
 
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -156,6 +159,11 @@ int cmd_serve(Args& args) {
 #ifdef GEARSPH_WITH_FE
   // Jobs asking for the FE check are taken only where gmsh and ccx are.
   c.fe_check_unavailable = [] { return fe::fe_unavailable_reason(); };
+  // FE work directories of servers that died during a check.
+  if (const int stale = fe::remove_stale_work_dirs("gearsph-fe-")) {
+    std::fprintf(stderr, "gearsph serve: removed %d FE work folder(s) of stopped processes\n",
+                 stale);
+  }
 #endif
   if (!c.local_workers) c.workers = 0;
   server::Server s(c);

@@ -87,8 +87,10 @@ usage:
       limits:   --max-body-bytes B (1048576)  --max-particles N (5e6)  --max-steps N (1e8)
                 --max-particle-steps N (1e12)  --max-disk-gb G (50)  --max-study-jobs N (100)
                 --max-connections N (512)  --image-cache-mb M (64, rendered images in memory)
+                --build-budget N (2e5: a request builds the scene of at most N particles)
       timeouts [s]: --header-timeout 10  --body-timeout 30  --idle-timeout 60
                 --write-timeout 60  --keepalive 15 (comments on quiet event streams)
+                --build-timeout 20 (a request's sizing and scene build)
       many machines (docs/scale-out.md): --store URL (postgresql://..., libpq's
                 host=... dbname=..., or sqlite:PATH) or --store-file FILE (its first
                 line; or the environment's GEARSPH_STORE: no password in argv)

@@ -87,6 +87,17 @@ Outline polygon_outline(const std::string& name, int body, const geometry::Polyg
 // default held as long again.
 void relax_to_static(Scene& scene, double omega_slowest);
 
+// While one is in scope on this thread, body-fitted fills (add_body_fitted)
+// place their seeded particles without relaxing them: as many particles, in
+// a fraction of the time, for a job's sizing (solver/job/job_size.hpp).
+class CountOnlyScope {
+ public:
+  CountOnlyScope();
+  ~CountOnlyScope();
+  CountOnlyScope(const CountOnlyScope&) = delete;
+  CountOnlyScope& operator=(const CountOnlyScope&) = delete;
+};
+
 // Fills `region` with body-fitted particles graded by `spacing` and adds
 // them to the last body (volume: the clipped Voronoi cell), marking the body
 // fitted; motion_of(x, y) gives each particle's motion index. Returns the

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <numbers>
 
+#include "solver/core/setup_progress.hpp"
 #include "solver/geometry/body_fitted.hpp"
 #include "solver/scene/builders.hpp"
 
@@ -36,6 +37,9 @@ std::size_t add_particle(Simulation& sim, double x, double y, int motion, double
   const Material& mat = sim.bodies.back().material;
   const double dx = sim.discretization.dx;
   const std::size_t i = sim.particles.n;
+  // A large lattice is filled without another set-up stage: a stop in
+  // scope (SetupStop) is heard here too.
+  if ((i & 4095) == 0) setup_progress("placing particles", 0.0);
   const double v = volume > 0.0 ? volume : dx * dx;
   sim.particles.add(x, y, mat.rho0 * v, mat.rho0, static_cast<int>(sim.bodies.size() - 1), motion,
                     spacing > 0.0 ? spacing : dx);
@@ -132,10 +136,32 @@ void relax_to_static(Scene& scene, double omega_slowest) {
   scene.default_end_s = 2.0 * sim.load_ramp_s;
 }
 
+namespace {
+
+thread_local int count_only_scopes = 0;
+// A few relaxation sweeps even so: the seeds' closest pairs would set a
+// stable step well below the relaxed particles' (1.7 against 0.96 million
+// steps for rack_pinion at 0.5 mm unrelaxed, 0.97 after 8 sweeps).
+constexpr int kCountOnlyIterations = 6;
+
+}  // namespace
+
+CountOnlyScope::CountOnlyScope() {
+  ++count_only_scopes;
+}
+
+CountOnlyScope::~CountOnlyScope() {
+  --count_only_scopes;
+}
+
 int add_body_fitted(Simulation& sim, const geometry::Region& region,
                     const geometry::SpacingField& spacing,
                     const std::function<int(double, double)>& motion_of) {
-  const geometry::BodyFittedParticles b = geometry::fill_body_fitted(region, spacing);
+  geometry::BodyFittedOptions options;
+  // The relaxation moves the seeded particles, never adds or removes one;
+  // it is most of a body-fitted set-up (4 s of 4.2 for 1,190 particles).
+  if (count_only_scopes > 0) options.max_iterations = kCountOnlyIterations;
+  const geometry::BodyFittedParticles b = geometry::fill_body_fitted(region, spacing, options);
   for (std::size_t i = 0; i < b.points.size(); ++i) {
     const geometry::Point q = b.points[i];
     add_particle(sim, q.x, q.y, motion_of(q.x, q.y), b.volume[i], b.spacing[i]);

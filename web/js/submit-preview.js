@@ -130,9 +130,11 @@ export function showEstimate(el, doc) {
   const split = rt.output_s > 0 ? `computing ${duration(rt.compute_s)}, writing output ${duration(rt.output_s)}` : null;
   put(el,
     h("dl", { class: "kv" },
-      item("Particles", int(doc.particles), doc.bodies.map((b) => `${b.name} ${int(b.particles)}`).join(", ")),
+      item("Particles", int(doc.particles), doc.built === false
+        ? "estimated from coarser copies of the job"
+        : doc.bodies.map((b) => `${b.name} ${int(b.particles)}`).join(", ")),
       item("Time steps", int(doc.steps)),
-      item("Time step dt", eng(doc.dt_s, "s"), `limit ${eng(doc.dt_limit_s, "s")}`),
+      doc.built === false ? null : item("Time step dt", eng(doc.dt_s, "s"), `limit ${eng(doc.dt_limit_s, "s")}`),
       item("Simulated time", eng(doc.end_s, "s")),
       item("Frames", int(doc.frames)),
       item("Results on disk", bytes(doc.disk_bytes)),

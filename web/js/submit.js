@@ -128,6 +128,14 @@ export function submitView(root) {
         const doc = await res.json();
         if (mine !== sequence || disposed) return;
         jobs.clearErrors();
+        if (res.ok && doc.built === false) {
+          // Beyond what the server builds for a preview: counts and run time, no geometry.
+          if (!doc.accepted) showProblems(doc.errors, "This server would refuse this job");
+          el.previewState.textContent = doc.points_omitted;
+          draw(last, true);
+          showEstimate(el.estimate, doc);
+          return;
+        }
         if (!res.ok || !doc.outlines) {
           // Not a job (malformed), invalid, or too large to build: the reasons.
           showProblems(doc.errors?.length ? doc.errors : [{ pointer: "", detail: doc.detail || doc.title }],
