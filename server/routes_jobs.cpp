@@ -259,7 +259,11 @@ Response execute(Services& s, Request& req) {
 
   auto idem = idempotency_of(req, "jobs", request);
   if (auto* error = std::get_if<StringResponse>(&idem)) return std::move(*error);
-  auto admitted = admit_job(s, *job, req.gone);
+  // Bounded by the build deadline alone: a submission changes the store,
+  // and a client that half-closes its side after sending (pipelining,
+  // `nc -N`) still waits for its answer, which a peek cannot tell from one
+  // that hung up. Previews, which change nothing, also stop on a hang-up.
+  auto admitted = admit_job(s, *job, {});
   if (auto* refusal = std::get_if<Refusal>(&admitted))
     return refusal_response(*refusal, req, prefix);
 

@@ -172,7 +172,7 @@ Response create_study(Services& s, Request& req) {
     auto check = [&] {
       for (std::size_t i = next++; i < points.size(); i = next++) {
         try {
-          checked[i] = admit_job(s, points[i].job, req.gone);
+          checked[i] = admit_job(s, points[i].job, {});  // as POST /jobs: the deadline bounds it
         } catch (...) {
           const std::lock_guard lock(failed_mutex);
           if (!failed) failed = std::current_exception();
