@@ -96,7 +96,7 @@ function fields(id, summary, check, comparison, names) {
     sphCaption.textContent = `SPH, ${where}, last frame`;
     const scale = sph.range ? `${eng(sph.range[0], "Pa").replace(/^-/, "−")} to ${eng(sph.range[1], "Pa")}` : null;
     note.textContent = scale && sph.tooth0
-      ? `Both figures: ${pair.symbol} of tooth 0 in the same window on one colour scale, ${scale} (the FE figure's, from 1.25 times the larger FE fillet peak); the load's contact zone is off scale, in the end colour. SPH draws each particle as a disc of its spacing.`
+      ? `Both figures: ${pair.symbol} of tooth 0 in the same window on one colour scale, ${scale} (the FE figure's, from 1.25 times the larger FE fillet peak); the load's contact zone is off scale, in the end colour. SPH's field is drawn as contours inside the outlines, smoothed for the drawing (docs/results.md).`
       : scale
         ? `Both figures: ${pair.symbol} on one colour scale, ${scale}; this run's summary does not say where tooth 0 is (tooth0_box_m), so the SPH figure shows the ${where}.`
         : "The colour scales differ: the FE summary does not give its figure's range.";
