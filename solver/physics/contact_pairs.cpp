@@ -69,6 +69,7 @@ SmoothedPoint where(const PairContext& c, std::size_t i) {
 struct SurfaceEnds {
   double sag_a, sag_b;  // a tangent-line pair's parabolas (0: none)
   bool outline, curved;
+  bool corner_a, corner_b;  // convex corners (outline only): no tangent line
 };
 [[gnu::always_inline]] inline SurfacePair geometry_from(const Particles& p, std::size_t a,
                                                         std::size_t b, double dxab, double dyab,
@@ -79,7 +80,7 @@ struct SurfaceEnds {
                                         p.surf_curvature[b], spacing[a], spacing[b],
                                         p.surf_curvature_rate[a], p.surf_curvature_rate[b])
                   : surface_pair(dxab, dyab, ax, ay, bx, by, p.surf_depth[a], p.surf_depth[b], dx,
-                                 e.outline, e.sag_a, e.sag_b);
+                                 e.outline, e.sag_a, e.sag_b, e.corner_a, e.corner_b);
 }
 
 // The pair's geometry evaluated in one order for both ends (from the lower
@@ -90,7 +91,7 @@ struct SurfaceEnds {
                                                              double njx, double njy, double dx,
                                                              const SurfaceEnds& e) {
   if (i < j) return geometry_from(p, i, j, dxij, dyij, nix, niy, njx, njy, dx, e);
-  const SurfaceEnds swapped{e.sag_b, e.sag_a, e.outline, e.curved};
+  const SurfaceEnds swapped{e.sag_b, e.sag_a, e.outline, e.curved, e.corner_b, e.corner_a};
   SurfacePair sp = geometry_from(p, j, i, -dxij, -dyij, njx, njy, nix, niy, dx, swapped);
   sp.nx = -sp.nx;
   sp.ny = -sp.ny;
@@ -140,10 +141,15 @@ struct SurfaceEnds {
     smoothed_normal(p, sj, j, njx, njy);
   }
   // A tangent-line pair measures from the parabola of a particle whose
-  // surface is one (smoothed, away from corners).
+  // surface is one (smoothed, away from corners), and a corner (turning by
+  // kCornerTurning over its spacing) from its partner's line alone
+  // (surface_pair).
   const SurfaceEnds e{outline && c.smooth && st.smooth_surface[i] ? p.surf_curvature[i] : 0.0,
                       outline && c.smooth && st.smooth_surface[j] ? p.surf_curvature[j] : 0.0,
-                      outline, curved};
+                      outline,
+                      curved,
+                      outline && p.surf_curvature[i] * spacing[i] >= kCornerTurning,
+                      outline && p.surf_curvature[j] * spacing[j] >= kCornerTurning};
   const SurfacePair sp = symmetric_geometry(p, i, j, dxij, dyij, nix, niy, njx, njy, dx, e);
   if (!sp.active || !c.smooth) return sp;
   // Seen from i, with i's normal turned by -+kTurn.
