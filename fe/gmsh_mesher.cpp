@@ -329,12 +329,20 @@ TriMesh mesh_with_gmsh(const MeshSpec& spec, const FeTools& tools,
 }
 
 PolygonPieces polygon_curves(const geometry::Polygon& poly, std::vector<std::size_t> cuts,
-                             double corner_rad) {
+                             double corner_rad, bool cut_chord_jumps) {
   const std::size_t n = poly.size();
   if (n < 3) throw std::invalid_argument("polygon_curves: fewer than three vertices");
+  // Also where the chords' lengths jump (a straight flank's one chord beside
+  // a fillet's samples): a spline through a long chord between short ones
+  // overshoots, and gmsh put the mid-side node of a rack fillet's element
+  // beyond its end node (a non-positive Jacobian in CalculiX, at a pressure
+  // angle of 16.5 degrees). The long chord becomes a Line of its own.
+  constexpr double kChordJump = 4.0;
   for (std::size_t i = 0; i < n; ++i) {
     const Point in = poly[i] - poly[(i + n - 1) % n], out = poly[(i + 1) % n] - poly[i];
-    if (std::abs(std::atan2(geometry::cross(in, out), geometry::dot(in, out))) > corner_rad) {
+    const double li = geometry::norm(in), lo = geometry::norm(out);
+    if (std::abs(std::atan2(geometry::cross(in, out), geometry::dot(in, out))) > corner_rad ||
+        (cut_chord_jumps && std::max(li, lo) > kChordJump * std::min(li, lo))) {
       cuts.push_back(i);
     }
   }

@@ -64,7 +64,9 @@ TriMesh mesh_with_gmsh(const MeshSpec& spec, const FeTools& tools,
                        double timeout_s);
 
 // A closed polygon cut into curves at the given vertices (and at every
-// corner turning more than `corner_rad`): a Line where a piece is two
+// corner turning more than `corner_rad`; with cut_chord_jumps also where one
+// chord is more than four times as long as the next, so that a straight
+// chord between sampled curves is a Line): a Line where a piece is two
 // vertices, a Spline otherwise. Returns the curves in order, the i-th
 // starting at the i-th cut vertex (ascending indices).
 struct PolygonPieces {
@@ -72,6 +74,6 @@ struct PolygonPieces {
   std::vector<std::size_t> first_vertex;  // where each curve starts
 };
 PolygonPieces polygon_curves(const geometry::Polygon& poly, std::vector<std::size_t> cuts,
-                             double corner_rad);
+                             double corner_rad, bool cut_chord_jumps = false);
 
 }  // namespace gearsph::fe

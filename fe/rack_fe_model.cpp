@@ -67,7 +67,9 @@ RackFeResult solve_rack_fe(const GearFeCase& c, const GearLoadPatch& load, doubl
   const std::size_t f1 = (f0 + 1) % poly.size();
   cuts.push_back(f0);
   cuts.push_back(f1);
-  const PolygonPieces pieces = polygon_curves(poly, cuts, kCornerRad);
+  // The rack's straight flank is one chord between its fillet's and its tip
+  // rounding's samples (gmsh_mesher.hpp).
+  const PolygonPieces pieces = polygon_curves(poly, cuts, kCornerRad, true);
   CurveLoop loop;
   for (std::size_t i = 0; i < pieces.curves.size(); ++i) {
     Curve piece = pieces.curves[i];

@@ -190,6 +190,35 @@ TEST(FeMesh, PolygonIsCutIntoSplinesAtCornersAndGivenVertices) {
   EXPECT_THROW(gmsh_geo(spec), std::invalid_argument);
 }
 
+// A straight chord between finely sampled arcs (a rack's flank between its
+// fillet and its tip rounding): a Line of its own, not a spline segment,
+// which would overshoot between samples 270 times shorter and put mid-side
+// nodes outside their elements.
+TEST(FeMesh, ALongChordBetweenShortOnesIsALineOfItsOwn) {
+  geometry::Polygon d;  // a D: a half circle of 60 samples closed by its diameter
+  for (int k = 0; k <= 60; ++k) d.push_back({std::cos(kPi * k / 60), std::sin(kPi * k / 60)});
+  const PolygonPieces p = polygon_curves(d, {}, 2.0, true);  // no corner cuts
+  ASSERT_EQ(p.curves.size(), 2u);
+  std::size_t lines = 0;
+  for (const Curve& c : p.curves) {
+    if (c.kind == Curve::Kind::Line) {
+      ++lines;
+      ASSERT_EQ(c.points.size(), 2u);
+      EXPECT_NEAR(geometry::norm(c.points[1] - c.points[0]), 2.0, 1e-12);  // the diameter
+    }
+  }
+  EXPECT_EQ(lines, 1u);
+  // Chords of even length are left as they were: the circle is cut only
+  // where it is asked.
+  geometry::Polygon circle;
+  for (int k = 0; k < 90; ++k)
+    circle.push_back({std::cos(2 * kPi * k / 90), std::sin(2 * kPi * k / 90)});
+  EXPECT_EQ(polygon_curves(circle, {10, 50}, 2.0, true).curves.size(), 2u);
+  // Without the rule the D is one spline, from its only cut.
+  EXPECT_EQ(polygon_curves(d, {}, 2.0).curves.size(), 2u);
+  EXPECT_EQ(polygon_curves(d, {}, 2.0).curves[0].kind, Curve::Kind::Spline);
+}
+
 // --------------------------------------------------------- results files --
 
 TEST(FeResults, ReadsFixedWidthFrdRecordsAndTheReactionTotal) {

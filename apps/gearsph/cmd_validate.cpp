@@ -2,6 +2,7 @@
 // and as JSON.
 #include <cstdio>
 #include <filesystem>
+#include <stdexcept>
 
 #include "apps/gearsph/cli.hpp"
 #include "solver/job/job.hpp"
@@ -25,7 +26,20 @@ const char* kind_name(validation::Case::Kind k) {
 }
 }  // namespace
 
+#ifdef GEARSPH_WITH_FE
+int cmd_accuracy_map(Args& args);  // cmd_fe_accuracy_map.cpp
+#endif
+
 int cmd_validate(Args& args) {
+  if (const auto study = args.option("study")) {
+#ifdef GEARSPH_WITH_FE
+    if (*study == "accuracy") return cmd_accuracy_map(args);
+    throw std::invalid_argument("--study takes accuracy, not '" + *study + "'");
+#else
+    throw std::invalid_argument("--study " + *study +
+                                ": FE unavailable: this build has no FE layer (GEARSPH_FE)");
+#endif
+  }
   const bool quick = args.flag("quick");
   const std::string out = args.option("out").value_or("validation");
   const int threads = args.integer("threads", 0);
