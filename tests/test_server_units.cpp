@@ -262,6 +262,21 @@ TEST(ServerStudy, RefusalsPointIntoTheRequest) {
       pointers(
           {{"base", tiny_job()}, {"axes", {{{"pointer", "/a"}, {"values", {1}}}}}, {"extra", 1}})
           .count("/extra"));
+  // N9: the job's name is the study's to set: an axis there is refused, not dropped.
+  for (const char* name : {"/name", "/name/x", "/name/0"}) {
+    try {
+      parse_study({{"base", tiny_job()},
+                   {"axes",
+                    {{{"pointer", "/time/end_s"}, {"values", {1e-3}}},
+                     {{"pointer", name}, {"values", {"a", "b"}}}}}},
+                  10);
+      ADD_FAILURE() << name << " was taken as an axis";
+    } catch (const InvalidJob& e) {
+      ASSERT_EQ(e.issues.size(), 1u) << name;
+      EXPECT_EQ(e.issues[0].pointer, "/axes/1/pointer") << name;
+      EXPECT_NE(e.issues[0].message.find("name"), std::string::npos) << e.issues[0].message;
+    }
+  }
   // A pointer through a number cannot be set.
   const StudySpec spec = parse_study(
       {{"base", tiny_job()}, {"axes", {{{"pointer", "/time/end_s/x"}, {"values", {1}}}}}}, 10);
@@ -300,9 +315,19 @@ TEST(ServerHttp, RangeHeaders) {
   EXPECT_EQ(parse_range("bytes=100-", 100, r), RangeParse::unsatisfiable);
   EXPECT_EQ(parse_range("bytes=-0", 100, r), RangeParse::unsatisfiable);
   for (const char* none :
-       {"bytes=0-1,5-6", "items=0-1", "bytes=a-b", "bytes=9-1", "bytes=-", "bytes=1", ""}) {
+       {"bytes=0-1,5-6", "items=0-1", "bytes=a-b", "bytes=9-1", "bytes=-", "bytes=1", "",
+        // N6: malformed first or last positions are no range at all (RFC 9110, 14.1.2).
+        "bytes=1e2-200", "bytes=-1e2", "bytes= 1-2", "bytes=1 -2", "bytes=+1-2", "bytes=1-+2",
+        "bytes=1-2 ", "bytes=--5", "bytes=0x1-2"}) {
     EXPECT_EQ(parse_range(none, 100, r), RangeParse::none) << none;
   }
+  EXPECT_EQ(parse_range("BYTES=1-2", 100, r), RangeParse::ok);  // the unit is case-insensitive
+  // Positions past 2^64 are still positions: the end of the file, or past it.
+  EXPECT_EQ(parse_range("bytes=5-99999999999999999999999", 100, r), RangeParse::ok);
+  EXPECT_EQ(r.last, 99u);
+  EXPECT_EQ(parse_range("bytes=99999999999999999999999-", 100, r), RangeParse::unsatisfiable);
+  EXPECT_EQ(parse_range("bytes=-99999999999999999999999", 100, r), RangeParse::ok);
+  EXPECT_EQ(r.first, 0u);
 }
 
 TEST(ServerHttp, TargetsAreDecodedPerSegment) {
