@@ -161,8 +161,9 @@ TEST(ServerJobStore, RecoverRequeuesThenFailsAfterMaxAttempts) {
   }
   Database db(file);
   // Version 2 added claims with leases and outside schedulers (scale-out),
-  // version 3 the claims' tokens, version 4 the workers' heartbeats.
-  EXPECT_EQ(db.query("SELECT version FROM schema_version").at(0).at(0), "4");
+  // version 3 the claims' tokens, version 4 the workers' heartbeats,
+  // version 5 the run's stage, the FE check's outcome and the submitter.
+  EXPECT_EQ(db.query("SELECT version FROM schema_version").at(0).at(0), "5");
   EXPECT_EQ(db.query("PRAGMA journal_mode").at(0).at(0), "wal");
 }
 
