@@ -15,6 +15,7 @@
 #include "server/log.hpp"
 #include "server/range_file.hpp"
 #include "server/router.hpp"
+#include "server/sessions.hpp"
 #include "server/static_files.hpp"
 #include "server/study.hpp"
 #include "solver/job/job.hpp"
@@ -329,6 +330,35 @@ TEST(ServerHttp, RangeHeaders) {
   EXPECT_EQ(parse_range("bytes=99999999999999999999999-", 100, r), RangeParse::unsatisfiable);
   EXPECT_EQ(parse_range("bytes=-99999999999999999999999", 100, r), RangeParse::ok);
   EXPECT_EQ(r.first, 0u);
+}
+
+// N12: failed logins count per address within a minute; the wait is until
+// the oldest of them is a minute old; a success forgets them.
+TEST(ServerSessions, FailedLoginsWaitUntilTheOldestIsAMinuteOld) {
+  using std::chrono::seconds;
+  LoginThrottle t(5, seconds(60));
+  const auto t0 = LoginThrottle::Clock::now();
+  for (int i = 0; i < 4; ++i) t.failed("a", t0 + seconds(i));
+  EXPECT_EQ(t.wait("a", t0 + seconds(4)).count(), 0);
+  t.failed("a", t0 + seconds(4));
+  EXPECT_EQ(t.wait("a", t0 + seconds(10)).count(), 50);  // the first failure leaves at 60 s
+  EXPECT_EQ(t.wait("b", t0 + seconds(10)).count(), 0);   // another address
+  EXPECT_EQ(t.wait("a", t0 + seconds(60)).count(), 0);   // four left in the window
+  t.succeeded("a");
+  t.failed("a", t0 + seconds(61));
+  EXPECT_EQ(t.wait("a", t0 + seconds(61)).count(), 0);
+
+  Sessions s(seconds(3600), 2);
+  const std::string a = s.open(), b = s.open();
+  EXPECT_EQ(a.size(), 32u);  // 128 bits as hex
+  EXPECT_TRUE(s.valid(a) && s.valid(b));
+  EXPECT_FALSE(s.valid("not-a-session"));
+  const std::string c = s.open();  // beyond the cap the oldest goes
+  EXPECT_FALSE(s.valid(a));
+  EXPECT_TRUE(s.valid(b) && s.valid(c));
+  EXPECT_TRUE(s.close(b));
+  EXPECT_FALSE(s.valid(b));
+  EXPECT_FALSE(s.close(b));
 }
 
 TEST(ServerHttp, TargetsAreDecodedPerSegment) {
