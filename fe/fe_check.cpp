@@ -302,6 +302,7 @@ nlohmann::json run_fe_check(const nlohmann::json& job, const std::filesystem::pa
                   r.mesh.nodes.size(), r.mesh.elements.size(), 1e-6 * r.stress.tension.stress_Pa,
                   1e-6 * r.stress.tension.at_iso30_Pa, r.mesh_s, r.solve_s);
     log(line);
+    if (o.progress) o.progress(double(results.size()) / double(sizes.size() + 1));
   }
   const GearFeResult& ref = results.back();
 
@@ -574,9 +575,20 @@ void add_fe_comparison(const PreparedJob& job, const RunResult& run,
                                 {"message", "the SPH run did not complete (" + run.status + ")"}};
     return;
   }
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [start] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   FeCheckOptions o;
   o.threads = std::max(1, job.scene.sim.threads);
-  if (eo.observer) o.cancelled = [obs = eo.observer] { return obs->cancelled(); };
+  if (eo.observer) {
+    o.cancelled = [obs = eo.observer] { return obs->cancelled(); };
+    // The job service counts this stage in the job's progress, ETA and wall time.
+    o.progress = [obs = eo.observer, &elapsed](double fraction) {
+      obs->on_stage({"fe_check", fraction, elapsed()});
+    };
+    o.progress(0.0);
+  }
   // The SPH run's own load on tooth 0 and its structure, so that both solve
   // the same problem.
   model_the_sph_run(summary, "summary", o);
@@ -590,6 +602,8 @@ void add_fe_comparison(const PreparedJob& job, const RunResult& run,
     summary["fe_comparison"] = {{"status", "failed"},
                                 {"message", std::string("the FE check failed: ") + e.what()}};
   }
+  summary["fe_comparison"]["wall_s"] = elapsed();
+  if (o.progress) o.progress(1.0);
 }
 
 }  // namespace

@@ -43,6 +43,9 @@ struct FeCheckOptions {
   bool whole_gear = false;
   std::function<bool()> cancelled;              // checked between meshes
   std::function<void(const std::string&)> log;  // progress lines
+  // The part of the check done (0-1): after each mesh, the files and images
+  // at the end counted as one more mesh.
+  std::function<void(double)> progress;
 };
 
 // The options that make the FE check solve what a finished SPH static check

@@ -28,6 +28,10 @@ struct Limits {
   // jobs are answered from the estimate and built by the worker that runs them.
   std::int64_t max_built_particles = 200'000;
   int max_connections = 512;  // open connections (503 above)
+  // Queued jobs (not yet running): all together (503 beyond) and from one
+  // client address (429 beyond); a study counts all its jobs.
+  std::int64_t max_queued = 1000;
+  std::int64_t max_queued_per_client = 200;
 };
 
 struct Timeouts {

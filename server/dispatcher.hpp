@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "solver/run/runner.hpp"
+#include "server/job_store.hpp"
 
 namespace gearsph::server {
 
@@ -19,8 +19,9 @@ class Dispatcher {
   virtual void drain() {}
   // Graceful stop; returns when nothing runs on its behalf any more.
   virtual void stop() = 0;
-  // The newest progress of a job running here (in this process's memory).
-  virtual std::optional<Progress> live(const std::string& id) const = 0;
+  // The newest progress of a job running here (in this process's memory),
+  // both stages counted.
+  virtual std::optional<ProgressUpdate> live(const std::string& id) const = 0;
   // Stops a dismissed job; false if it does not run here.
   virtual bool cancel(const std::string& id) = 0;
   // Jobs running in this process.

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <random>
 
+#include "server/fe_stage_estimate.hpp"
+
 namespace gearsph::server {
 
 std::string new_id() {
@@ -48,7 +50,31 @@ int percent(std::int64_t step, std::int64_t steps) {
   return std::clamp(static_cast<int>(100.0 * double(step) / double(steps)), 0, 99);
 }
 
-nlohmann::json status_document(const JobRecord& job, const std::optional<Progress>& live) {
+nlohmann::json fe_check_member(const JobRecord& job, const std::string& fe_check_json) {
+  if (!fe_check_json.empty()) {
+    auto fe = nlohmann::json::parse(fe_check_json, nullptr, false);
+    if (fe.is_object()) return fe;
+  }
+  // Queued or running, with nothing reported yet: whether it will run the
+  // check. (A job that ended without a report, run by an outside
+  // scheduler, says nothing rather than "pending" forever.)
+  const bool ahead = job.status == JobStatus::accepted || job.status == JobStatus::running;
+  if (ahead && job.job_json.find("\"fe_check\"") != std::string::npos &&
+      runs_fe_check(nlohmann::json::parse(job.job_json, nullptr, false))) {
+    return {{"status", "pending"}};
+  }
+  return nullptr;
+}
+
+nlohmann::json stage_wall(double wall_s, const nlohmann::json& fe_check) {
+  if (!fe_check.is_object() || !fe_check.contains("wall_s") || !fe_check["wall_s"].is_number()) {
+    return {{"sph", wall_s}, {"fe_check", fe_check.is_object() ? nlohmann::json(0.0) : nullptr}};
+  }
+  const double fe = fe_check["wall_s"].get<double>();
+  return {{"sph", std::max(0.0, wall_s - fe)}, {"fe_check", fe}};
+}
+
+nlohmann::json status_document(const JobRecord& job, const std::optional<ProgressUpdate>& live) {
   nlohmann::json d;
   d["jobID"] = job.id;
   d["processID"] = kProcessId;
@@ -59,21 +85,28 @@ nlohmann::json status_document(const JobRecord& job, const std::optional<Progres
   std::int64_t step = job.step;
   double simulated = job.simulated_s, wall = job.wall_s, eta = job.eta_s;
   int progress = job.progress;
-  if (live && job.status == JobStatus::running) {
+  std::string stage = job.stage, fe_check = job.fe_check_json;
+  const bool running = job.status == JobStatus::running;
+  if (live && running) {
     step = live->step;
-    simulated = live->time_s;
+    simulated = live->simulated_s;
     wall = live->wall_s;
     eta = live->eta_s;
-    progress = percent(live->step, live->steps);
+    progress = live->progress;
+    stage = live->stage;
+    if (!live->fe_check_json.empty()) fe_check = live->fe_check_json;
   }
   d["progress"] = progress;
+  d["stage"] = running && !stage.empty() ? nlohmann::json(stage) : nlohmann::json(nullptr);
   d["step"] = step;
   d["steps"] = job.steps;
   d["particles"] = job.particles;
   d["simulated_s"] = simulated;
   d["end_s"] = job.end_s;
   d["wall_s"] = wall;
-  if (job.status == JobStatus::running) {
+  d["fe_check"] = fe_check_member(job, fe_check);
+  d["stage_wall_s"] = stage_wall(wall, d["fe_check"]);
+  if (running) {
     d["eta_s"] = eta;
   } else {
     d["eta_s"] = nullptr;

@@ -175,6 +175,11 @@ void HttpSession::on_body(beast::error_code ec) {
 void HttpSession::dispatch() {
   auto req = std::make_shared<Request>();
   req->msg = parser_->release();
+  {
+    beast::error_code ec;
+    const auto peer = stream_.socket().remote_endpoint(ec);
+    if (!ec) req->client = peer.address().to_string();
+  }
   Router::Match match = router_.match(*req);
   const Lane lane = match.lane();
   if (lane == Lane::io) {

@@ -45,6 +45,9 @@ struct Request {
   // Whether the client has closed its connection while the handler runs
   // (off the I/O threads); a handler doing long work stops then. Empty: never.
   std::function<bool()> gone;
+  // The client's address (the peer of the connection): failed logins and
+  // queue quotas are counted by it. "" when not known.
+  std::string client;
 
   std::string header(http::field f) const { return std::string(msg[f]); }
   std::optional<std::string> query_value(std::string_view name) const;

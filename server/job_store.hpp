@@ -29,6 +29,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -79,12 +80,15 @@ struct JobRecord {
   std::string message;
   std::string created, started, finished, updated;  // ISO 8601 UTC; "" if not yet
   std::string worker;                               // who claimed it last ("" if nobody)
-  std::string claim;         // the token of the last claim ("" if none): fences its holder
-  std::string dispatch_ref;  // an outside scheduler's reference while tracked ("" if none)
+  std::string claim;          // the token of the last claim ("" if none): fences its holder
+  std::string dispatch_ref;   // an outside scheduler's reference while tracked ("" if none)
+  std::string stage;          // while running: "sph" or "fe_check" ("" if not known)
+  std::string fe_check_json;  // the FE stage's outcome as a JSON object ("" if none yet)
 };
 
 struct NewJob {
   std::string id, name, job_json;
+  std::string client;  // the submitter's address, for the queue quota ("" if not known)
   std::string study_id;
   std::int64_t study_index = 0;
   std::string parameters_json = "{}";
@@ -130,11 +134,27 @@ struct JobPage {
   std::int64_t total = 0;  // matching the query, ignoring limit and offset
 };
 
+// A run's progress. With the FE check, progress, wall_s and eta_s count
+// both stages (docs/api.md, The FE stage).
 struct ProgressUpdate {
+  ProgressUpdate() = default;
+  ProgressUpdate(std::string id_, std::int64_t step_, double simulated_s_, double wall_s_,
+                 double eta_s_, int progress_, std::string stage_ = {},
+                 std::string fe_check_json_ = {})
+      : id(std::move(id_)),
+        step(step_),
+        simulated_s(simulated_s_),
+        wall_s(wall_s_),
+        eta_s(eta_s_),
+        progress(progress_),
+        stage(std::move(stage_)),
+        fe_check_json(std::move(fe_check_json_)) {}
   std::string id;
   std::int64_t step = 0;
   double simulated_s = 0.0, wall_s = 0.0, eta_s = 0.0;
   int progress = 0;
+  std::string stage;          // "sph" or "fe_check"
+  std::string fe_check_json;  // "" for a job without the FE check
 };
 
 // A claimant: "host:pid:random" of a worker process, or the server's own
@@ -187,6 +207,8 @@ class JobStore {
   virtual std::optional<StudyRecord> study(const std::string& id) = 0;
   // Jobs by status name, every status present.
   virtual std::map<std::string, std::int64_t> count_by_status() = 0;
+  // Queued (accepted) jobs submitted from `client` (NewJob::client).
+  virtual std::int64_t queued_from(const std::string& client) = 0;
 
   // Oldest accepted job (not handed to a scheduler) -> running, attempts + 1,
   // held by `holder` under a new claim token (JobRecord::claim); nullopt if

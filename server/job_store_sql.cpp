@@ -56,7 +56,7 @@ sql::Value text(JobStatus s) {
 const char* const kJobColumns =
     "id, status, name, job_json, study_id, study_index, parameters_json, particles, steps, "
     "end_s, step, simulated_s, wall_s, eta_s, progress, attempts, message, created, started, "
-    "finished, updated, worker, dispatch_ref, claim";
+    "finished, updated, worker, dispatch_ref, claim, stage, fe_check";
 const std::string kSelectJob = std::string("SELECT ") + kJobColumns + " FROM jobs";
 
 JobRecord read_job(const sql::Row& r) {
@@ -87,6 +87,8 @@ JobRecord read_job(const sql::Row& r) {
   j.worker = r.text(21);
   j.dispatch_ref = r.text(22);
   j.claim = r.text(23);
+  j.stage = r.text(24);
+  j.fe_check_json = r.text(25);
   return j;
 }
 
@@ -123,7 +125,14 @@ std::string held_by(const std::string& claim, sql::Values& params) {
 }
 
 // Progress columns back to the start, for a run that starts (again).
-const char* const kFromTheStart = "step = 0, simulated_s = 0, wall_s = 0, eta_s = 0, progress = 0";
+const char* const kFromTheStart =
+    "step = 0, simulated_s = 0, wall_s = 0, eta_s = 0, progress = 0, stage = NULL, fe_check = NULL";
+
+// An empty text as SQL NULL.
+sql::Value or_null(const std::string& s) {
+  if (s.empty()) return std::monostate{};
+  return s;
+}
 
 // "1 attempt", "2 attempts", said by SQL.
 const char* const kAttemptsWord =
@@ -218,6 +227,13 @@ class SqlJobStore : public JobStore {
     return counts;
   }
 
+  std::int64_t queued_from(const std::string& client) override {
+    return db_->connect()
+        ->query("SELECT COUNT(*) FROM jobs WHERE status = 'accepted' AND client = ?", {client})
+        .front()
+        .int64(0);
+  }
+
   std::optional<JobRecord> claim(const Holder& holder) override {
     // One statement: two workers can never claim the same job.
     const auto rows = db_->connect()->query(
@@ -294,9 +310,10 @@ class SqlJobStore : public JobStore {
     for (const ProgressUpdate& u : batch) {
       const auto changed = db->execute(
           "UPDATE jobs SET step = ?, simulated_s = ?, wall_s = ?, eta_s = ?, progress = ?, "
-          "updated = " +
+          "stage = ?, fe_check = ?, updated = " +
               now_ + " WHERE id = ? AND status = 'running'",
-          {u.step, u.simulated_s, u.wall_s, u.eta_s, std::int64_t{u.progress}, u.id});
+          {u.step, u.simulated_s, u.wall_s, u.eta_s, std::int64_t{u.progress}, or_null(u.stage),
+           or_null(u.fe_check_json), u.id});
       if (changed == 0) gone.push_back(u.id);
     }
     tx.commit();
@@ -311,11 +328,13 @@ class SqlJobStore : public JobStore {
                        last.simulated_s,
                        last.wall_s,
                        std::int64_t{last.progress},
+                       or_null(last.fe_check_json),
                        id};
     const std::string held = held_by(claim, params);
     return db_->connect()->execute(
                "UPDATE jobs SET status = ?, message = ?, step = ?, simulated_s = ?, wall_s = ?, "
-               "eta_s = 0, progress = ?, lease_until = NULL, dispatch_ref = NULL, started = "
+               "eta_s = 0, progress = ?, stage = NULL, fe_check = ?, lease_until = NULL, "
+               "dispatch_ref = NULL, started = "
                "COALESCE(started, " +
                    now_ + "), finished = " + now_ + ", updated = " + now_ + " WHERE id = ?" + held,
                params) > 0;
@@ -325,10 +344,10 @@ class SqlJobStore : public JobStore {
                        const ProgressUpdate& last) override {
     return db_->connect()->execute(
                "UPDATE jobs SET message = ?, step = ?, simulated_s = ?, wall_s = ?, eta_s = 0, "
-               "progress = ?, lease_until = NULL, finished = " +
+               "progress = ?, stage = NULL, fe_check = ?, lease_until = NULL, finished = " +
                    now_ + ", updated = " + now_ + " WHERE id = ? AND status = 'dismissed'",
                {message, last.step, last.simulated_s, last.wall_s, std::int64_t{last.progress},
-                id}) > 0;
+                or_null(last.fe_check_json), id}) > 0;
   }
 
   bool requeue(const std::string& id, const std::string& message,
@@ -592,11 +611,11 @@ class SqlJobStore : public JobStore {
   void insert_job(sql::Connection& db, const NewJob& j) {
     db.execute(
         "INSERT INTO jobs (id, status, name, job_json, study_id, study_index, parameters_json, "
-        "particles, steps, end_s, message, created, updated) VALUES (?, 'accepted', ?, ?, ?, ?, "
-        "?, ?, ?, ?, 'queued', " +
+        "particles, steps, end_s, client, message, created, updated) VALUES (?, 'accepted', ?, "
+        "?, ?, ?, ?, ?, ?, ?, ?, 'queued', " +
             now_ + ", " + now_ + ")",
         {j.id, j.name, j.job_json, j.study_id.empty() ? sql::Value() : sql::Value(j.study_id),
-         j.study_index, j.parameters_json, j.particles, j.steps, j.end_s});
+         j.study_index, j.parameters_json, j.particles, j.steps, j.end_s, or_null(j.client)});
   }
 
   std::string seconds_since(const std::string& column) const {

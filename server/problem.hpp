@@ -26,6 +26,7 @@ inline constexpr const char* kJobTooLarge = "urn:gearsph:problem:job-too-large";
 inline constexpr const char* kIdempotencyConflict = "urn:gearsph:problem:idempotency-key-reused";
 inline constexpr const char* kJobFailed = "urn:gearsph:problem:job-failed";
 inline constexpr const char* kStoreUnavailable = "urn:gearsph:problem:store-unavailable";
+inline constexpr const char* kQueueFull = "urn:gearsph:problem:queue-full";
 inline constexpr const char* kRenderingUnavailable = "urn:gearsph:problem:rendering-unavailable";
 inline constexpr const char* kFeUnavailable = "urn:gearsph:problem:fe-unavailable";
 inline constexpr const char* kInvalidParameter = "urn:gearsph:problem:invalid-parameter";

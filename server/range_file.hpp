@@ -47,10 +47,11 @@ struct ByteRange {
 
 enum class RangeParse { none, ok, unsatisfiable };
 
-// "bytes=a-b", "bytes=a-" or "bytes=-n" against a file of `size` bytes.
-// Several ranges, other units or malformed values give `none` (the whole
-// file is sent, as RFC 9110 allows); a range starting past the end gives
-// `unsatisfiable` (416).
+// "bytes=a-b", "bytes=a-" or "bytes=-n" against a file of `size` bytes,
+// positions digits only (RFC 9110, 14.1.2). Several ranges, other units or
+// anything malformed ("bytes=1e2-200", "bytes= 1-2") give `none`: the
+// header is ignored and the whole file sent (14.2); a range starting past
+// the end, or "-0", gives `unsatisfiable` (416, 15.5.17).
 RangeParse parse_range(std::string_view header, std::uint64_t size, ByteRange& out);
 
 }  // namespace gearsph::server

@@ -264,8 +264,11 @@ std::optional<std::pair<http::status, std::string>> framing_problem(
 
 }  // namespace
 
-bool carries_token(const http::request_header<>& header, std::string_view token) {
-  return token_matches(presented_token(header).token, token);
+bool carries_credential(const http::request_header<>& header, std::string_view token,
+                        const Sessions& sessions) {
+  const Credential c = presented_token(header);
+  if (c.from == Credential::From::cookie) return sessions.valid(c.token);
+  return c.from != Credential::From::nothing && token_matches(c.token, token);
 }
 
 namespace {
@@ -320,7 +323,7 @@ std::optional<Response> Router::screen(const http::request_header<>& header) con
   if (auto problem = framing_problem(header)) return refuse(problem->first, problem->second);
   if (!config.token.empty() && !is_public(header)) {
     const Credential presented = presented_token(header);
-    if (!token_matches(presented.token, config.token)) {
+    if (!carries_credential(header, config.token, services_.sessions)) {
       Response res =
           problem::plain(http::status::unauthorized,
                          "this server needs \"Authorization: Bearer <token>\"", req.path);

@@ -9,6 +9,7 @@
 
 #include "server/http_types.hpp"
 #include "server/services.hpp"
+#include "server/sessions.hpp"
 
 namespace gearsph::server {
 
@@ -22,11 +23,13 @@ struct HostName {
 };
 std::optional<HostName> parse_host(std::string_view value);
 
-// The cookie POST /login sets: the token, percent-encoded.
-inline constexpr std::string_view kSessionCookie = "gearsph_token";
+// The cookie POST /login sets: an opaque session id (sessions.hpp), never the token.
+inline constexpr std::string_view kSessionCookie = "gearsph_session";
 std::optional<std::string> session_cookie(const http::request_header<>& header);
-// Whether the request presents `token` (header, cookie, or on event streams ?access_token=).
-bool carries_token(const http::request_header<>& header, std::string_view token);
+// Whether the request presents `token` (the header, or on event streams
+// ?access_token=) or the cookie of one of `sessions`.
+bool carries_credential(const http::request_header<>& header, std::string_view token,
+                        const Sessions& sessions);
 
 // Where a handler runs. The I/O threads only move bytes and answer from
 // memory; anything that reads the job store or the disk waits elsewhere,

@@ -259,6 +259,7 @@ Response execute(Services& s, Request& req) {
 
   auto idem = idempotency_of(req, "jobs", request);
   if (auto* error = std::get_if<StringResponse>(&idem)) return std::move(*error);
+  if (auto full = queue_refusal(s, req, 1)) return std::move(*full);
   // Bounded by the build deadline alone: a submission changes the store,
   // and a client that half-closes its side after sending (pipelining,
   // `nc -N`) still waits for its answer, which a peek cannot tell from one
@@ -267,6 +268,7 @@ Response execute(Services& s, Request& req) {
   if (auto* refusal = std::get_if<Refusal>(&admitted))
     return refusal_response(*refusal, req, prefix);
 
+  std::get<NewJob>(admitted).client = req.client;
   const SubmitResult r =
       s.store.submit(std::get<NewJob>(admitted), std::get<std::optional<Idempotency>>(idem));
   const std::string location = "/jobs/" + r.id;
@@ -277,7 +279,16 @@ Response execute(Services& s, Request& req) {
     s.publish_status(*record);
     s.workers.notify();
   }
-  return created(r.kind == SubmitResult::Kind::created, location, s.status_of(*record));
+  StringResponse res =
+      created(r.kind == SubmitResult::Kind::created, location, s.status_of(*record));
+  // Every job runs asynchronously: a client preferring that is told it got
+  // it (RFC 7240, 3; OGC API - Processes 1.0, 7.11.2.3); one asking to wait
+  // is not, and reads the status document instead.
+  const std::string prefer = req.header(http::field::prefer);
+  if (prefer.find("respond-async") != std::string::npos) {
+    res.set(http::field::preference_applied, "respond-async");
+  }
+  return res;
 }
 
 Response list_jobs(Services& s, Request& req) {

@@ -14,6 +14,8 @@
 #include <optional>
 #include <utility>
 
+#include "server/documents.hpp"
+#include "server/fe_stage_estimate.hpp"
 #include "server/job_limits.hpp"
 #include "server/log.hpp"
 #include "server/problem.hpp"
@@ -41,9 +43,10 @@ double rounded(double v, double quantum) {
 }
 
 // The run time: the particle-steps at the speed of this server's recent
-// successful jobs (their output time taken off), plus the time to write
-// this job's frames and histories.
-nlohmann::json run_time_estimate(Services& s, const JobEstimate& estimate) {
+// successful jobs (their output and FE time taken off), plus the time to
+// write this job's frames and histories, plus its FE check's
+// (fe_stage_estimate.hpp) when it asks for one.
+nlohmann::json run_time_estimate(Services& s, const JobEstimate& estimate, bool fe_check) {
   JobQuery q;
   q.statuses = {JobStatus::successful};
   q.limit = kSpeedSampleJobs;
@@ -55,8 +58,10 @@ nlohmann::json run_time_estimate(Services& s, const JobEstimate& estimate) {
     const double output = job.is_object() ? output_seconds_of(job, j.particles, j.steps) : 0.0;
     // A run that mostly wrote output says little about computing: its
     // compute time is taken as at least a tenth of its wall time.
+    const double sph_wall =
+        stage_wall(j.wall_s, fe_check_member(j, j.fe_check_json)).at("sph").get<double>();
     work += static_cast<double>(j.particles) * static_cast<double>(j.steps);
-    wall += std::max(j.wall_s - output, 0.1 * j.wall_s);
+    wall += std::max(sph_wall - output, 0.1 * sph_wall);
     ++used;
   }
   const bool measured = used > 0 && wall > 0 && work > 0;
@@ -67,8 +72,12 @@ nlohmann::json run_time_estimate(Services& s, const JobEstimate& estimate) {
                        : calibrated ? calibration.particle_steps_per_s
                                     : kFallbackParticleStepsPerSecond;
   const double compute_s = estimate.particle_steps / speed;
+  const std::optional<FeStageEstimate> fe =
+      fe_check ? std::optional(estimate_fe_stage(s.store)) : std::nullopt;
   nlohmann::json e = {
-      {"wall_s", compute_s + estimate.output_s},
+      {"wall_s", compute_s + estimate.output_s + (fe ? fe->seconds : 0.0)},
+      {"sph_s", compute_s + estimate.output_s},
+      {"fe_check_s", fe ? nlohmann::json(fe->seconds) : nlohmann::json(nullptr)},
       {"compute_s", compute_s},
       {"output_s", estimate.output_s},
       {"particle_steps_per_s", speed},
@@ -101,6 +110,21 @@ nlohmann::json run_time_estimate(Services& s, const JobEstimate& estimate) {
                   speed, static_cast<long long>(estimate.frames));
   }
   e["note"] = note;
+  if (fe) {
+    e["fe_check_basis"] = fe->basis;
+    char more[200];
+    if (fe->basis == "measured") {
+      std::snprintf(more, sizeof more,
+                    "; plus the FE check: %.0f s, the mean of this server's last %d checks",
+                    fe->seconds, fe->checks_measured);
+    } else {
+      std::snprintf(more, sizeof more,
+                    "; plus the FE check: %.0f s, measured on a 2-core machine (this server "
+                    "has run none yet)",
+                    fe->seconds);
+    }
+    e["note"] = std::string(note) + more;
+  }
   return e;
 }
 
@@ -275,7 +299,7 @@ Response preview(Services& s, Request& req) {
     e.output_s = doc->at("run_time_basis").at("output_s").get<double>();
     e.frames = doc->at("run_time_basis").at("frames").get<std::int64_t>();
     doc->erase("run_time_basis");
-    (*doc)["run_time"] = run_time_estimate(s, e);
+    (*doc)["run_time"] = run_time_estimate(s, e, runs_fe_check(job));
     (*doc)["cached"] = cached;
     return json_response(http::status::ok, *doc);
   } catch (const InvalidJob& e) {

@@ -145,6 +145,9 @@ Response create_study(Services& s, Request& req) {
     return refusal_response(
         Refusal{http::status::bad_request, problem::kInvalidJob, "Invalid study", e.issues}, req);
   }
+  if (auto full = queue_refusal(s, req, static_cast<std::int64_t>(points.size()))) {
+    return std::move(*full);
+  }
   NewStudy study;
   study.id = new_id();
   study.name = !spec.name.empty() ? spec.name
@@ -214,6 +217,7 @@ Response create_study(Services& s, Request& req) {
     job.study_id = study.id;
     job.study_index = static_cast<std::int64_t>(i);
     job.parameters_json = point.parameters.dump();
+    job.client = req.client;
     jobs.push_back(std::move(job));
   }
 

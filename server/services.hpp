@@ -19,6 +19,7 @@
 #include "server/image_cache.hpp"
 #include "server/job_store.hpp"
 #include "server/preview_cache.hpp"
+#include "server/sessions.hpp"
 #include "server/speed_calibration.hpp"
 
 namespace gearsph::server {
@@ -49,6 +50,9 @@ struct Services {
   std::atomic<std::int64_t> requests{0};
   std::atomic<bool> stopping{false};    // shutting down: no more keep-alive
   std::atomic<unsigned short> port{0};  // the port listened on (known once bound)
+  // The dashboard's sessions and the failed logins by address (sessions.hpp).
+  Sessions sessions{kSessionLifetime, kMaxSessions};
+  LoginThrottle login_throttle{kLoginFailuresPerMinute, std::chrono::seconds(60)};
 
   // This machine's speed, measured once, by the first caller (a preview
   // before any job has finished); the callers at the same time wait for it.

@@ -89,7 +89,7 @@ class SlurmDispatcher : public Dispatcher {
   void start() override;
   void notify() override;
   void stop() override;
-  std::optional<Progress> live(const std::string&) const override { return std::nullopt; }
+  std::optional<ProgressUpdate> live(const std::string&) const override { return std::nullopt; }
   bool cancel(const std::string& id) override;
   int running() const override { return 0; }
 

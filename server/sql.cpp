@@ -50,4 +50,11 @@ CREATE TABLE workers (
 CREATE INDEX jobs_by_finished ON jobs(finished);
 )sql";
 
+const char* const kStages = R"sql(
+ALTER TABLE jobs ADD COLUMN stage TEXT;
+ALTER TABLE jobs ADD COLUMN fe_check TEXT;
+ALTER TABLE jobs ADD COLUMN client TEXT;
+CREATE INDEX jobs_by_client ON jobs(client) WHERE status = 'accepted';
+)sql";
+
 }  // namespace gearsph::server::sql

@@ -69,6 +69,10 @@ class Transaction {
 extern const char* const kClaimTokens;
 // worker processes' heartbeats, for the operator (/metrics).
 extern const char* const kWorkerHeartbeats;
+// the stage a run is in (the SPH time loop, the FE check after it) and the
+// FE check's outcome (docs/api.md, The FE stage); who submitted a job, for
+// the queue quota (Limits::max_queued_per_client).
+extern const char* const kStages;
 
 // The SQL that differs between engines. Times are ISO 8601 UTC text with
 // milliseconds and leases are on the database's clock, so every process

@@ -78,7 +78,7 @@ CREATE TABLE idempotency_keys (
 );
 )sql";
 
-// 2 and 3: sql.hpp.
+// 2, 3 and 5: sql.hpp.
 
 // 4: every inserted or changed job is announced on the channel gearsph_jobs
 // (LISTEN/NOTIFY): API nodes wait for it instead of reading the table.
@@ -108,7 +108,8 @@ sql::Dialect postgres_dialect() {
       .skip_locked = " FOR UPDATE SKIP LOCKED",
       .lock_row = " FOR UPDATE",
       .migration_lock = "SELECT pg_advisory_xact_lock(7146301)",  // any fixed number
-      .migrations = {kMigration1, sql::kClaimTokens, sql::kWorkerHeartbeats, kMigration4},
+      .migrations = {kMigration1, sql::kClaimTokens, sql::kWorkerHeartbeats, kMigration4,
+                     sql::kStages},
   };
 }
 

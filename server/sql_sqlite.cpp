@@ -69,7 +69,7 @@ ALTER TABLE jobs ADD COLUMN dispatch_ref TEXT;
 CREATE INDEX jobs_by_dispatch ON jobs(dispatch_ref) WHERE dispatch_ref IS NOT NULL;
 )sql";
 
-// 3 and 4: sql.hpp.
+// 3, 4 and 5: sql.hpp.
 
 // Seconds since 1970 on SQLite's clock: leases are REAL.
 #define GEARSPH_EPOCH "((julianday('now') - 2440587.5) * 86400.0)"
@@ -85,7 +85,8 @@ sql::Dialect sqlite_dialect() {
       .skip_locked = "",  // one writer at a time: the claim's UPDATE is atomic as it is
       .lock_row = "",     // BEGIN IMMEDIATE holds the write lock already
       .migration_lock = "",
-      .migrations = {kMigration1, kMigration2, sql::kClaimTokens, sql::kWorkerHeartbeats},
+      .migrations = {kMigration1, kMigration2, sql::kClaimTokens, sql::kWorkerHeartbeats,
+                     sql::kStages},
   };
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 
+#include "server/conditional_requests.hpp"
 #include "server/problem.hpp"
 
 namespace gearsph::server {
@@ -78,11 +79,34 @@ Response serve_file(const Request& req, const std::filesystem::path& file,
   body.open(file.c_str(), boost::beast::file_mode::scan, ec);
   if (ec) return problem::plain(http::status::not_found, "no such file", req.path);
   const std::uint64_t size = body.size();
+  const std::optional<FileValidators> validators = file_validators(file);
+  auto with_validators = [&](auto& res) {
+    if (!validators) return;
+    res.set(http::field::etag, validators->etag);
+    res.set(http::field::last_modified, validators->last_modified);
+  };
+  // RFC 9110, 13.2.2: If-None-Match, else If-Modified-Since, then If-Range.
+  if (validators) {
+    const std::string none_match = req.header(http::field::if_none_match);
+    const std::string since = req.header(http::field::if_modified_since);
+    if (!none_match.empty() ? none_match_fails(none_match, *validators)
+                            : !since.empty() && not_modified_since(since, *validators)) {
+      StringResponse res{http::status::not_modified, 11};
+      with_validators(res);
+      res.set(http::field::accept_ranges, "bytes");
+      return res;
+    }
+  }
 
   http::status status = http::status::ok;
   std::string content_range;
   const std::string range_header = req.header(http::field::range);
-  if (!range_header.empty()) {
+  const std::string if_range = req.header(http::field::if_range);
+  // A range of another version of the file would be spliced into the wrong
+  // bytes: without a match the whole file goes (13.1.5).
+  const bool range_applies =
+      if_range.empty() || (validators && if_range_holds(if_range, *validators));
+  if (!range_header.empty() && range_applies) {
     ByteRange range;
     switch (parse_range(range_header, size, range)) {
       case RangeParse::unsatisfiable: {
@@ -111,6 +135,7 @@ Response serve_file(const Request& req, const std::filesystem::path& file,
   res.body() = std::move(body);
   res.set(http::field::content_type, content_type);
   res.set(http::field::accept_ranges, "bytes");
+  with_validators(res);
   if (!content_range.empty()) res.set(http::field::content_range, content_range);
   res.prepare_payload();
   return res;

@@ -64,8 +64,17 @@ StudySpec parse_study(const nlohmann::json& body, std::int64_t max_jobs) {
         axis.pointer = a["pointer"].get<std::string>();
         try {
           const nlohmann::json::json_pointer p(axis.pointer);
-          if (p.empty())
+          if (p.empty()) {
             issues.push_back({at + "/pointer", "must point into the job, not at all of it"});
+          } else if (p.to_string() == "/name" || p.to_string().rfind("/name/", 0) == 0) {
+            // N9: each job's name is the study's (its name and the job's
+            // number, routes_studies.cpp); the axis would vary no physics.
+            issues.push_back(
+                {at + "/pointer",
+                 "points at the job's name, which a study sets itself (the study's name and the "
+                 "job's number) and which varies nothing in the run; vary a field of the job, "
+                 "e.g. /time/end_s, and name the study with its own \"name\""});
+          }
         } catch (const nlohmann::json::exception&) {
           issues.push_back({at + "/pointer", "is not a JSON pointer (RFC 6901), e.g. /time/end_s"});
         }

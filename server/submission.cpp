@@ -283,6 +283,48 @@ std::variant<NewJob, Refusal> admit_job(const Services& services, const nlohmann
   }
 }
 
+std::optional<StringResponse> queue_refusal(Services& s, const Request& req, std::int64_t adding) {
+  const Limits& l = s.config.limits;
+  // A queue drains at the speed of its jobs: a try a minute later is soon enough.
+  constexpr int kRetryAfter_s = 60;
+  auto refuse = [&](http::status status, const std::string& detail) {
+    problem::Problem p;
+    p.status = status;
+    p.type = problem::kQueueFull;
+    p.title = "The queue is full";
+    p.detail = detail;
+    p.instance = req.path;
+    StringResponse res = problem::make(p);
+    res.set(http::field::retry_after, std::to_string(kRetryAfter_s));
+    return res;
+  };
+  auto jobs = [](std::int64_t n) { return std::to_string(n) + (n == 1 ? " job" : " jobs"); };
+  if (l.max_queued > 0) {
+    const auto counts = s.store.count_by_status();
+    const auto it = counts.find("accepted");
+    const std::int64_t queued = it == counts.end() ? 0 : it->second;
+    if (queued + adding > l.max_queued) {
+      return refuse(http::status::service_unavailable,
+                    jobs(queued) + " wait to run and this server queues at most " +
+                        jobs(l.max_queued) + " (--max-queued); this request would add " +
+                        jobs(adding) + ": try again once some have started");
+    }
+  }
+  if (l.max_queued_per_client > 0 && !req.client.empty()) {
+    const std::int64_t mine = s.store.queued_from(req.client);
+    if (mine + adding > l.max_queued_per_client) {
+      return refuse(http::status::too_many_requests,
+                    jobs(mine) + " from " + req.client +
+                        " wait to run and one client may queue "
+                        "at most " +
+                        jobs(l.max_queued_per_client) +
+                        " (--max-queued-per-client); this request would add " + jobs(adding) +
+                        ": try again once some have started, or dismiss some");
+    }
+  }
+  return std::nullopt;
+}
+
 StringResponse refusal_response(const Refusal& r, const Request& req, const std::string& prefix,
                                 const std::string& context) {
   problem::Problem p;

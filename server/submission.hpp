@@ -44,6 +44,13 @@ std::optional<Refusal> fe_refusal(const Services& services, const nlohmann::json
 std::variant<NewJob, Refusal> admit_job(const Services& services, const nlohmann::json& job,
                                         const std::function<bool()>& gone = {});
 
+// The queue quota (Limits::max_queued, max_queued_per_client): a 503 when
+// `adding` more jobs would overfill the queue as a whole, a 429 when they
+// would overfill this client's share of it, each with Retry-After and a
+// sentence; nullopt when they fit.
+std::optional<StringResponse> queue_refusal(Services& services, const Request& req,
+                                            std::int64_t adding);
+
 // The problem answer for a refusal. `prefix` locates the job in the request
 // body for the error pointers (e.g. "/inputs/job"); `context` starts each
 // error detail (e.g. "job 3: ").

@@ -1,9 +1,11 @@
 #include "server/worker_pool.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "server/attempt_dirs.hpp"
 #include "server/documents.hpp"
+#include "server/fe_stage_estimate.hpp"
 #include "server/log.hpp"
 #include "server/metrics.hpp"
 #include "solver/core/setup_progress.hpp"
@@ -22,10 +24,21 @@ std::string fixed(double v, int digits) {
   return buf;
 }
 
-nlohmann::json progress_document(const std::string& id, const Progress& p) {
-  return {{"jobID", id},      {"status", "running"}, {"progress", percent(p.step, p.steps)},
-          {"step", p.step},   {"steps", p.steps},    {"simulated_s", p.time_s},
-          {"end_s", p.end_s}, {"wall_s", p.wall_s},  {"eta_s", p.eta_s},
+nlohmann::json progress_document(const ProgressUpdate& u, std::int64_t steps, double end_s) {
+  nlohmann::json fe = nullptr;
+  if (!u.fe_check_json.empty()) fe = nlohmann::json::parse(u.fe_check_json, nullptr, false);
+  return {{"jobID", u.id},
+          {"status", "running"},
+          {"stage", u.stage},
+          {"progress", u.progress},
+          {"step", u.step},
+          {"steps", steps},
+          {"simulated_s", u.simulated_s},
+          {"end_s", end_s},
+          {"wall_s", u.wall_s},
+          {"stage_wall_s", stage_wall(u.wall_s, fe)},
+          {"eta_s", u.eta_s},
+          {"fe_check", fe},
           {"setup", nullptr}};  // the set-up is over (its events below)
 }
 
@@ -50,7 +63,53 @@ struct WorkerPool::RunningJob {
   Progress progress;
   bool dirty = false;
   Clock::time_point last_event{};
+  // The FE check after the time loop (fe_stage_estimate.hpp), when the job asks for it.
+  bool fe = false;
+  FeStageEstimate fe_estimate;
+  std::string stage = "sph";
+  StageProgress fe_progress;
+  Clock::time_point fe_reported{};  // when fe_progress came
+  double sph_wall_s = 0.0;          // the time loop's, once it is over
 };
+
+namespace {
+
+// A running job's numbers, both stages counted: the FE stage's time, its
+// estimate until a part of it is done and its own pace after, is added to
+// the wall time and the ETA, and the progress is the share of the total
+// time spent, below 100 % until the check is done too.
+ProgressUpdate live_update(const WorkerPool::RunningJob& j) {
+  const Progress& p = j.progress;
+  ProgressUpdate u{j.id,    p.step, p.time_s, p.wall_s, p.eta_s, percent(p.step, p.steps),
+                   j.stage, ""};
+  if (!j.fe) return u;
+  nlohmann::json fe = j.fe_estimate.to_json();
+  double fe_left = j.fe_estimate.seconds;
+  if (j.stage == "fe_check") {
+    const StageProgress& f = j.fe_progress;
+    // The check reports after each mesh; its clock runs in between.
+    const double elapsed =
+        f.elapsed_s + std::chrono::duration<double>(Clock::now() - j.fe_reported).count();
+    // Until a part is done, the estimate; then the pace of the parts done.
+    fe_left = f.fraction > 0 ? std::max(0.0, f.elapsed_s / f.fraction - elapsed)
+                             : std::max(0.0, j.fe_estimate.seconds - elapsed);
+    u.wall_s = j.sph_wall_s + elapsed;
+    u.eta_s = fe_left;
+    fe["status"] = "running";
+    fe["fraction"] = f.fraction;
+    fe["wall_s"] = elapsed;
+  } else {
+    u.eta_s = p.eta_s + fe_left;
+    fe["status"] = "pending";
+  }
+  fe["eta_s"] = fe_left;
+  const double total = u.wall_s + u.eta_s;
+  u.progress = total > 0 ? std::clamp(static_cast<int>(100.0 * u.wall_s / total), 0, 99) : 0;
+  u.fe_check_json = fe.dump();
+  return u;
+}
+
+}  // namespace
 
 // Runs on the simulation thread: cheap, never blocks on I/O.
 class WorkerPool::Observer : public RunObserver {
@@ -69,7 +128,20 @@ class WorkerPool::Observer : public RunObserver {
         publish = true;
       }
     }
-    if (publish) pool_.hub_.publish(job_.id, "progress", progress_document(job_.id, p).dump());
+    if (publish) publish_progress();
+  }
+
+  void on_stage(const StageProgress& s) override {
+    {
+      std::lock_guard<std::mutex> lock(job_.mutex);
+      if (job_.stage == "sph") job_.sph_wall_s = job_.progress.wall_s;
+      job_.stage = s.stage;
+      job_.fe_progress = s;
+      job_.fe_reported = Clock::now();
+      job_.dirty = true;
+      job_.last_event = Clock::now();
+    }
+    publish_progress();
   }
 
   bool cancelled() override {
@@ -77,9 +149,68 @@ class WorkerPool::Observer : public RunObserver {
   }
 
  private:
+  void publish_progress() {
+    ProgressUpdate u;
+    std::int64_t steps = 0;
+    double end_s = 0;
+    {
+      std::lock_guard<std::mutex> lock(job_.mutex);
+      u = live_update(job_);
+      steps = job_.progress.steps;
+      end_s = job_.progress.end_s;
+    }
+    pool_.hub_.publish(job_.id, "progress", progress_document(u, steps, end_s).dump());
+  }
+
   WorkerPool& pool_;
   RunningJob& job_;
 };
+
+namespace {
+
+struct FeOutcome {
+  bool ok = false;  // compared (perhaps with SPH values missing)
+  double wall_s = 0.0;
+  nlohmann::json document;  // the job's fe_check member
+  std::string sentence;     // for the job's message
+};
+
+// The FE stage's outcome from the summary's fe_comparison block (fe/fe_check.hpp).
+FeOutcome fe_outcome(const WorkerPool::RunningJob& j, const RunResult& r) {
+  FeOutcome o;
+  if (!j.fe) return o;
+  const nlohmann::json* block = r.summary.is_object() && r.summary.contains("fe_comparison")
+                                    ? &r.summary["fe_comparison"]
+                                    : nullptr;
+  std::string status = "not_run", said;
+  if (block && block->is_object()) {
+    status = block->value("status", "failed");
+    said = block->value("message", "");
+    if (block->contains("wall_s") && (*block)["wall_s"].is_number()) {
+      o.wall_s = (*block)["wall_s"].get<double>();
+    }
+  } else if (r.status == "completed") {
+    status = "failed";
+    said = "the FE check left no outcome in the summary";
+  } else {
+    said = "the SPH run did not complete (" + r.status + ")";
+  }
+  o.ok = status == "compared" || status == "sph_values_missing";
+  o.document = {{"status", status},
+                {"message", said},
+                {"wall_s", o.wall_s},
+                {"estimate_s", j.fe_estimate.seconds},
+                {"basis", j.fe_estimate.basis}};
+  if (o.ok) {
+    o.sentence = "the FE check compared in " + fixed(o.wall_s, 2) + " s";
+  } else {
+    o.sentence = "the FE check " + std::string(status == "failed" ? "failed" : status) +
+                 (said.empty() ? "" : ": " + said);
+  }
+  return o;
+}
+
+}  // namespace
 
 WorkerPool::WorkerPool(JobStore& store, EventHub& hub, WorkerPoolOptions options)
     : store_(store), hub_(hub), options_(std::move(options)) {}
@@ -127,7 +258,7 @@ void WorkerPool::stop() {
   if (flusher_.joinable()) flusher_.join();
 }
 
-std::optional<Progress> WorkerPool::live(const std::string& id) const {
+std::optional<ProgressUpdate> WorkerPool::live(const std::string& id) const {
   std::shared_ptr<RunningJob> job;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -136,7 +267,7 @@ std::optional<Progress> WorkerPool::live(const std::string& id) const {
     job = it->second;
   }
   std::lock_guard<std::mutex> lock(job->mutex);
-  return job->progress;
+  return live_update(*job);
 }
 
 bool WorkerPool::cancel(const std::string& id) {
@@ -251,6 +382,14 @@ void WorkerPool::run(const JobRecord& job, int& held) {
   rj->claim = job.claim;
   rj->progress.steps = job.steps;
   rj->progress.end_s = job.end_s;
+  rj->fe = runs_fe_check(nlohmann::json::parse(job.job_json, nullptr, false));
+  if (rj->fe) {
+    try {
+      rj->fe_estimate = estimate_fe_stage(store_);
+    } catch (const std::exception&) {
+      // The store away: the fallback figure will do for an estimate.
+    }
+  }
   {
     std::lock_guard<std::mutex> lock(mutex_);
     running_[job.id] = rj;
@@ -312,11 +451,20 @@ void WorkerPool::run(const JobRecord& job, int& held) {
     last.simulated_s = prepared.scene.sim.time;
     last.wall_s = r.wall_s;
     last.progress = percent(r.steps_done, prepared.steps);
-    if (r.status == "completed") {
+    const FeOutcome fe = fe_outcome(*rj, r);
+    if (rj->fe) {
+      last.wall_s += fe.wall_s;
+      last.fe_check_json = fe.document.dump();
+    }
+    if (r.status == "completed" && rj->fe && !fe.ok && observer.cancelled()) {
+      // The check was stopped, not failed: the job as a whole is.
+      cancelled = true;
+    } else if (r.status == "completed") {
       outcome = JobStatus::successful;
       last.progress = 100;
       message =
           "completed " + std::to_string(r.steps_done) + " steps in " + fixed(r.wall_s, 2) + " s";
+      if (rj->fe) message += "; " + fe.sentence;
     } else if (r.status == "cancelled") {
       cancelled = true;
     } else {
@@ -422,16 +570,23 @@ void WorkerPool::publish_status(const std::string& id) {
 
 void WorkerPool::flush() {
   std::vector<ProgressUpdate> batch;
+  // id and event: the FE stages' progress, which they report seldom.
+  std::vector<std::pair<std::string, std::string>> events;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     for (auto& [id, job] : running_) {
       std::lock_guard<std::mutex> job_lock(job->mutex);
-      if (!job->dirty) continue;
+      const bool fe_stage = job->stage == "fe_check";
+      if (!job->dirty && !fe_stage) continue;
       job->dirty = false;
-      const Progress& p = job->progress;
-      batch.push_back({id, p.step, p.time_s, p.wall_s, p.eta_s, percent(p.step, p.steps)});
+      batch.push_back(live_update(*job));
+      if (fe_stage) {
+        events.emplace_back(
+            id, progress_document(batch.back(), job->progress.steps, job->progress.end_s).dump());
+      }
     }
   }
+  for (const auto& [id, e] : events) hub_.publish(id, "progress", e);
   if (batch.empty()) return;
   try {
     // Jobs no longer running in the store were dismissed (perhaps by

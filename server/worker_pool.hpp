@@ -66,14 +66,16 @@ class WorkerPool : public Dispatcher {
   void stop() override;
 
   // The newest progress of a job running here.
-  std::optional<Progress> live(const std::string& id) const override;
+  std::optional<ProgressUpdate> live(const std::string& id) const override;
   // Stops a job running here at its next check (it was dismissed); false if not running here.
   bool cancel(const std::string& id) override;
   int running() const override;
   const WorkerPoolOptions& options() const { return options_; }
 
- private:
+  // A job running here: what its run reported so far (worker_pool.cpp).
   struct RunningJob;
+
+ private:
   class Observer;
 
   void work();

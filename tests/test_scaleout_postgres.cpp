@@ -96,7 +96,7 @@ TEST_F(ScaleOutPostgres, StoreClaimsEachJobOnceAcrossConnections) {
   // Opening again finds the schema current and migrates nothing.
   open_job_store(uri_);
   PgDatabase db(uri_);
-  EXPECT_EQ(db.value("SELECT version FROM schema_version"), "4");
+  EXPECT_EQ(db.value("SELECT version FROM schema_version"), "5");
   EXPECT_EQ(db.value("SELECT COUNT(*) FROM schema_version"), "1");
 }
 

@@ -85,6 +85,60 @@ TEST_F(ServerApi, SubmitPollResultsAndDownload) {
   EXPECT_GE(listing.json().at("files").size(), 3u);
 }
 
+// N6: result files carry a strong ETag and Last-Modified; If-Range,
+// If-None-Match and If-Modified-Since are honoured; a malformed Range is
+// ignored, never read as another range (RFC 9110, 13 and 14).
+TEST_F(ServerApi, ResultFilesHaveValidatorsAndStrictRanges) {
+  auto c = server_->client();
+  const std::string id = submit(c, tiny_job());
+  ASSERT_EQ(wait_final(c, id).at("status"), "successful");
+  const std::string file = "/jobs/" + id + "/files/history.csv";
+  const ClientResponse whole = c.get(file);
+  ASSERT_EQ(whole.status, 200u);
+  const std::string etag = whole.header("ETag");
+  const std::string modified = whole.header("Last-Modified");
+  ASSERT_GE(etag.size(), 3u) << "no ETag";
+  EXPECT_EQ(etag.front(), '"') << etag;  // strong: no W/
+  EXPECT_EQ(etag.back(), '"') << etag;
+  EXPECT_NE(modified.find(" GMT"), std::string::npos) << modified;
+
+  // "1e2" is no first-byte-pos: the header is malformed and ignored, not a suffix range.
+  const ClientResponse odd = c.get(file, {{"Range", "bytes=1e2-200"}});
+  EXPECT_EQ(odd.status, 200u);
+  EXPECT_TRUE(odd.body == whole.body);
+  for (const char* bad : {"bytes= 2-9", "bytes=2 -9", "bytes=+2-9", "bytes=0x2-9"}) {
+    EXPECT_EQ(c.get(file, {{"Range", bad}}).status, 200u) << bad;
+  }
+  EXPECT_EQ(c.get(file, {{"Range", "Bytes=2-9"}}).status, 206u);  // the unit is case-insensitive
+
+  // If-Range: the current ETag or date gives the range, another gives the whole file.
+  const ClientResponse same = c.get(file, {{"Range", "bytes=2-9"}, {"If-Range", etag}});
+  EXPECT_EQ(same.status, 206u);
+  EXPECT_EQ(same.header("ETag"), etag);
+  EXPECT_EQ(c.get(file, {{"Range", "bytes=2-9"}, {"If-Range", modified}}).status, 206u);
+  const ClientResponse changed =
+      c.get(file, {{"Range", "bytes=2-9"}, {"If-Range", "\"not-this-one\""}});
+  EXPECT_EQ(changed.status, 200u);
+  EXPECT_TRUE(changed.body == whole.body);
+  EXPECT_EQ(c.get(file, {{"Range", "bytes=2-9"}, {"If-Range", "W/" + etag}}).status, 200u);
+  EXPECT_EQ(
+      c.get(file, {{"Range", "bytes=2-9"}, {"If-Range", "Thu, 01 Jan 1970 00:00:00 GMT"}}).status,
+      200u);
+
+  // Conditional GET: 304 without a body, with the validators.
+  const ClientResponse cached = c.get(file, {{"If-None-Match", "\"x\", " + etag}});
+  EXPECT_EQ(cached.status, 304u);
+  EXPECT_TRUE(cached.body.empty());
+  EXPECT_EQ(cached.header("ETag"), etag);
+  EXPECT_EQ(c.get(file, {{"If-None-Match", "*"}}).status, 304u);
+  EXPECT_EQ(c.get(file, {{"If-None-Match", "\"x\""}}).status, 200u);
+  EXPECT_EQ(c.get(file, {{"If-Modified-Since", modified}}).status, 304u);
+  EXPECT_EQ(c.get(file, {{"If-Modified-Since", "Thu, 01 Jan 1970 00:00:00 GMT"}}).status, 200u);
+  // If-None-Match wins over If-Modified-Since (RFC 9110, 13.2.2).
+  EXPECT_EQ(c.get(file, {{"If-None-Match", "\"x\""}, {"If-Modified-Since", modified}}).status,
+            200u);
+}
+
 TEST_F(ServerApi, OgcExecuteRequestAndProcessDescription) {
   auto c = server_->client();
   const ClientResponse r = c.post_json("/processes/gearsph-simulation/execution",

@@ -10,6 +10,8 @@
 #include <map>
 #include <mutex>
 #include <regex>
+#include <set>
+#include <sstream>
 #include <thread>
 
 #include <boost/asio/io_context.hpp>
@@ -305,6 +307,81 @@ TEST(ServerToken, DashboardFilesAreOpenAndTheLoginCookieCarriesTheToken) {
   const ClientResponse logout = c.request("DELETE", "/login");
   EXPECT_EQ(logout.status, 204u);
   EXPECT_NE(logout.header("Set-Cookie").find("Max-Age=0"), std::string::npos);
+}
+
+// N12: the cookie is an opaque session id (never the token), revoked by
+// DELETE /login; failed logins from one address are limited (429).
+TEST(ServerToken, SessionsAreOpaqueRevocableAndFailedLoginsLimited) {
+  TempDir dir;
+  const std::string token = "the-service-token-0123456789";
+  std::ofstream(dir.path() / "token") << token << "\n";
+  ServerProcess server({"--token-file", (dir.path() / "token").string(), "--threads-per-job", "1"});
+  auto c = server.client();
+  auto session = [&] {
+    const ClientResponse login = c.post_json("/login", json{{"token", token}}.dump());
+    EXPECT_EQ(login.status, 204u) << login.body;
+    const std::string set = login.header("Set-Cookie");
+    return set.substr(0, set.find(';'));
+  };
+  const std::string first = session(), second = session();
+  EXPECT_EQ(first.rfind("gearsph_session=", 0), 0u) << first;
+  EXPECT_EQ(first.find(token), std::string::npos) << "the cookie holds the token: " << first;
+  EXPECT_NE(first, second);
+  EXPECT_EQ(c.get("/jobs", {{"Cookie", first}}).status, 200u);
+  EXPECT_EQ(c.get("/jobs", {{"Cookie", second}}).status, 200u);
+  // The token itself is no session.
+  EXPECT_EQ(c.get("/jobs", {{"Cookie", "gearsph_session=" + token}}).status, 401u);
+  // Logging out revokes the session on the server: the same cookie, sent again, is refused.
+  const ClientResponse logout = c.request("DELETE", "/login", "", {{"Cookie", first}});
+  EXPECT_EQ(logout.status, 204u);
+  EXPECT_EQ(c.get("/jobs", {{"Cookie", first}}).status, 401u);
+  EXPECT_EQ(c.get("/login", {{"Cookie", first}}).json().at("signed_in"), false);
+  EXPECT_EQ(c.get("/jobs", {{"Cookie", second}}).status, 200u);  // others stay
+
+  // Five wrong tokens a minute from one address, then 429 for any login.
+  for (int i = 0; i < 5; ++i) {
+    EXPECT_EQ(c.post_json("/login", R"({"token": "guess"})").status, 401u) << i;
+  }
+  const ClientResponse limited = c.post_json("/login", R"({"token": "guess"})");
+  EXPECT_EQ(limited.status, 429u) << limited.body;
+  EXPECT_EQ(limited.header("Content-Type"), "application/problem+json");
+  const int retry = std::stoi(limited.header("Retry-After"));
+  EXPECT_GE(retry, 1);
+  EXPECT_LE(retry, 60);
+  EXPECT_EQ(c.post_json("/login", json{{"token", token}}.dump()).status, 429u);
+  // The bearer token on requests is not a login: it still works.
+  EXPECT_EQ(c.get("/jobs", {{"Authorization", "Bearer " + token}}).status, 200u);
+}
+
+// N12: the queue has quotas, overall (503) and per client address (429),
+// each with Retry-After and a sentence; a study counts all its jobs.
+TEST(ServerQueue, QuotasRefuseJobsBeyondTheQueue) {
+  {
+    ServerProcess server({"--no-local-workers", "--max-queued-per-client", "2"});
+    auto c = server.client();
+    EXPECT_EQ(c.post_json("/jobs", tiny_job().dump()).status, 201u);
+    EXPECT_EQ(c.post_json("/jobs", tiny_job().dump()).status, 201u);
+    const ClientResponse third = c.post_json("/jobs", tiny_job().dump());
+    EXPECT_EQ(third.status, 429u) << third.body;
+    EXPECT_EQ(third.json().at("type"), "urn:gearsph:problem:queue-full");
+    EXPECT_NE(third.json().at("detail").get<std::string>().find("--max-queued-per-client"),
+              std::string::npos);
+    EXPECT_FALSE(third.header("Retry-After").empty());
+    EXPECT_EQ(c.get("/jobs").json().at("jobs").size(), 2u);  // nothing stored
+  }
+  {
+    ServerProcess server({"--no-local-workers", "--max-queued", "3"});
+    auto c = server.client();
+    const json study = {{"base", tiny_job()},
+                        {"axes", {{{"pointer", "/time/end_s"}, {"values", {1e-3, 2e-3}}}}}};
+    EXPECT_EQ(c.post_json("/studies", study.dump()).status, 201u);
+    const ClientResponse more = c.post_json("/studies", study.dump());
+    EXPECT_EQ(more.status, 503u) << more.body;
+    EXPECT_NE(more.json().at("detail").get<std::string>().find("--max-queued"), std::string::npos);
+    EXPECT_FALSE(more.header("Retry-After").empty());
+    EXPECT_EQ(c.post_json("/jobs", tiny_job().dump()).status, 201u);  // the third fits
+    EXPECT_EQ(c.post_json("/jobs", tiny_job().dump()).status, 503u);
+  }
 }
 
 int status_rank(const std::string& s) {
@@ -855,6 +932,109 @@ TEST_F(ServerHardening, ApiDefinitionDescribesExactlyTheRoutes) {
             classes.end());
 }
 
+// Whether an OpenAPI path template ("/jobs/{jobId}") matches a path.
+bool template_matches(const std::string& tpl, const std::string& path) {
+  auto split = [](const std::string& p) {
+    std::vector<std::string> out;
+    std::stringstream in(p);
+    for (std::string part; std::getline(in, part, '/');) out.push_back(part);
+    return out;
+  };
+  const auto t = split(tpl), p = split(path);
+  if (t.size() != p.size()) return false;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const bool parameter = !t[i].empty() && t[i].front() == '{';
+    if (parameter ? p[i].empty() : t[i] != p[i]) return false;
+  }
+  return true;
+}
+
+// N13: every status the service answers an operation with is among that
+// operation's responses in the API definition (no "default" catch-all),
+// the conditional, quota and screening answers included.
+TEST(ServerApiDefinition, EveryStatusAnsweredIsDocumented) {
+  ServerProcess server({"--workers", "1", "--threads-per-job", "1", "--max-queued-per-client", "1",
+                        "--max-body-bytes", "200000"});
+  auto c = server.client();
+  const json doc = c.get("/api").json();
+  std::vector<std::string> undocumented;
+  std::set<std::string> seen;
+  auto check = [&](const std::string& method, const std::string& target, unsigned status) {
+    const std::string path = target.substr(0, target.find('?'));
+    for (const auto& [tpl, item] : doc.at("paths").items()) {
+      if (!template_matches(tpl, path) || !item.contains(method)) continue;
+      const std::string code = std::to_string(status);
+      seen.insert(code);
+      if (!item.at(method).at("responses").contains(code)) {
+        undocumented.push_back(method + " " + tpl + " answered " + code);
+      }
+      return;
+    }
+    undocumented.push_back(method + " " + path + " is not described");
+  };
+  auto get = [&](const std::string& target, const HttpClient::Headers& h = {}) {
+    const ClientResponse r = c.get(target, h);
+    check("get", target, r.status);
+    return r;
+  };
+  auto post = [&](const std::string& target, const std::string& body,
+                  const HttpClient::Headers& h = {}) {
+    const ClientResponse r = c.post_json(target, body, h);
+    check("post", target, r.status);
+    return r;
+  };
+
+  const std::string done = post("/jobs", tiny_job().dump()).json().at("jobID");
+  ASSERT_EQ(wait_final(c, done).at("status"), "successful");
+  const std::string file = "/jobs/" + done + "/files/history.csv";
+  const std::string etag = get(file).header("ETag");
+  get(file, {{"Range", "bytes=2-9"}});
+  get(file, {{"If-None-Match", etag}});
+  get(file, {{"Range", "bytes=99999999-"}});
+  get("/jobs/" + done + "/files/none.csv");
+  get("/jobs/" + done);
+  get("/jobs/" + done + "/results");
+  get("/jobs?bogus=1");
+  get("/jobs/00000000-0000-4000-8000-000000000000");
+  get("/jobs", {{"Host", "rebind.attacker.example:" + server.port()}});
+  post("/preview", "{");
+  post("/preview", tiny_job().dump());
+  post("/login", "{}");
+  {
+    const ClientResponse r = c.request("POST", "/jobs", "{}", {{"Content-Type", "text/plain"}});
+    check("post", "/jobs", r.status);
+  }
+  post("/jobs", "[" + std::string(300000, ' ') + "]");
+  const std::string answer =
+      raw(server, "POST /jobs HTTP/1.1\r\nHost: 127.0.0.1:" + server.port() +
+                      "\r\nContent-Type: application/json\r\nTransfer-Encoding: gzip, "
+                      "chunked\r\n\r\n2\r\n{}\r\n0\r\n\r\n");
+  check("post", "/jobs", static_cast<unsigned>(std::stoi(answer.substr(9, 3))));
+
+  // Prefer: respond-async is applied, and said so (RFC 7240).
+  const ClientResponse running = post("/processes/gearsph-simulation/execution",
+                                      tiny_job(20.0).dump(), {{"Prefer", "respond-async"}});
+  EXPECT_EQ(running.header("Preference-Applied"), "respond-async");
+  const std::string long_run = running.json().at("jobID");
+  wait_for(c, long_run, [](const json& st) { return st.at("status") == "running"; });
+  // One queued is this client's quota: the next job and any study get 429.
+  const std::string queued = post("/jobs", tiny_job(20.0).dump()).json().at("jobID");
+  post("/jobs", tiny_job().dump());
+  post("/studies", json({{"base", tiny_job()},
+                         {"axes", {{{"pointer", "/time/end_s"}, {"values", {1e-3, 2e-3}}}}}})
+                       .dump());
+  for (const std::string& id : {queued, long_run}) {
+    check("delete", "/jobs/" + id, c.request("DELETE", "/jobs/" + id).status);
+  }
+  for (const char* code :
+       {"200", "201", "206", "304", "400", "404", "413", "415", "416", "421", "429", "501"}) {
+    EXPECT_TRUE(seen.count(code)) << "no request of this test was answered " << code;
+  }
+  std::string list;
+  for (const std::string& u : undocumented) list += "\n  " + u;
+  EXPECT_TRUE(undocumented.empty()) << "answers not in the API definition:" << list;
+}
+
 // 13. A job store that holds every reader at a gate, as a store under a
 // heavy query or a lost database would.
 class GatedStore : public JobStore {
@@ -897,6 +1077,7 @@ class GatedStore : public JobStore {
     gate();
     return {{"accepted", 0}};
   }
+  std::int64_t queued_from(const std::string&) override { return 0; }
   std::optional<JobRecord> claim(const Holder&) override { return std::nullopt; }
   std::vector<std::string> renew(const Holder&, const std::vector<HeldJob>&) override { return {}; }
   Recovery reclaim_expired(int) override { return {}; }
@@ -957,7 +1138,7 @@ class NoWorkers : public Dispatcher {
   void start() override {}
   void notify() override {}
   void stop() override {}
-  std::optional<Progress> live(const std::string&) const override { return std::nullopt; }
+  std::optional<ProgressUpdate> live(const std::string&) const override { return std::nullopt; }
   bool cancel(const std::string&) override { return false; }
   int running() const override { return 0; }
 };

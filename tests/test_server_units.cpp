@@ -15,6 +15,7 @@
 #include "server/log.hpp"
 #include "server/range_file.hpp"
 #include "server/router.hpp"
+#include "server/sessions.hpp"
 #include "server/static_files.hpp"
 #include "server/study.hpp"
 #include "solver/job/job.hpp"
@@ -161,8 +162,9 @@ TEST(ServerJobStore, RecoverRequeuesThenFailsAfterMaxAttempts) {
   }
   Database db(file);
   // Version 2 added claims with leases and outside schedulers (scale-out),
-  // version 3 the claims' tokens, version 4 the workers' heartbeats.
-  EXPECT_EQ(db.query("SELECT version FROM schema_version").at(0).at(0), "4");
+  // version 3 the claims' tokens, version 4 the workers' heartbeats,
+  // version 5 the run's stage, the FE check's outcome and the submitter.
+  EXPECT_EQ(db.query("SELECT version FROM schema_version").at(0).at(0), "5");
   EXPECT_EQ(db.query("PRAGMA journal_mode").at(0).at(0), "wal");
 }
 
@@ -262,6 +264,21 @@ TEST(ServerStudy, RefusalsPointIntoTheRequest) {
       pointers(
           {{"base", tiny_job()}, {"axes", {{{"pointer", "/a"}, {"values", {1}}}}}, {"extra", 1}})
           .count("/extra"));
+  // N9: the job's name is the study's to set: an axis there is refused, not dropped.
+  for (const char* name : {"/name", "/name/x", "/name/0"}) {
+    try {
+      parse_study({{"base", tiny_job()},
+                   {"axes",
+                    {{{"pointer", "/time/end_s"}, {"values", {1e-3}}},
+                     {{"pointer", name}, {"values", {"a", "b"}}}}}},
+                  10);
+      ADD_FAILURE() << name << " was taken as an axis";
+    } catch (const InvalidJob& e) {
+      ASSERT_EQ(e.issues.size(), 1u) << name;
+      EXPECT_EQ(e.issues[0].pointer, "/axes/1/pointer") << name;
+      EXPECT_NE(e.issues[0].message.find("name"), std::string::npos) << e.issues[0].message;
+    }
+  }
   // A pointer through a number cannot be set.
   const StudySpec spec = parse_study(
       {{"base", tiny_job()}, {"axes", {{{"pointer", "/time/end_s/x"}, {"values", {1}}}}}}, 10);
@@ -300,9 +317,48 @@ TEST(ServerHttp, RangeHeaders) {
   EXPECT_EQ(parse_range("bytes=100-", 100, r), RangeParse::unsatisfiable);
   EXPECT_EQ(parse_range("bytes=-0", 100, r), RangeParse::unsatisfiable);
   for (const char* none :
-       {"bytes=0-1,5-6", "items=0-1", "bytes=a-b", "bytes=9-1", "bytes=-", "bytes=1", ""}) {
+       {"bytes=0-1,5-6", "items=0-1", "bytes=a-b", "bytes=9-1", "bytes=-", "bytes=1", "",
+        // N6: malformed first or last positions are no range at all (RFC 9110, 14.1.2).
+        "bytes=1e2-200", "bytes=-1e2", "bytes= 1-2", "bytes=1 -2", "bytes=+1-2", "bytes=1-+2",
+        "bytes=1-2 ", "bytes=--5", "bytes=0x1-2"}) {
     EXPECT_EQ(parse_range(none, 100, r), RangeParse::none) << none;
   }
+  EXPECT_EQ(parse_range("BYTES=1-2", 100, r), RangeParse::ok);  // the unit is case-insensitive
+  // Positions past 2^64 are still positions: the end of the file, or past it.
+  EXPECT_EQ(parse_range("bytes=5-99999999999999999999999", 100, r), RangeParse::ok);
+  EXPECT_EQ(r.last, 99u);
+  EXPECT_EQ(parse_range("bytes=99999999999999999999999-", 100, r), RangeParse::unsatisfiable);
+  EXPECT_EQ(parse_range("bytes=-99999999999999999999999", 100, r), RangeParse::ok);
+  EXPECT_EQ(r.first, 0u);
+}
+
+// N12: failed logins count per address within a minute; the wait is until
+// the oldest of them is a minute old; a success forgets them.
+TEST(ServerSessions, FailedLoginsWaitUntilTheOldestIsAMinuteOld) {
+  using std::chrono::seconds;
+  LoginThrottle t(5, seconds(60));
+  const auto t0 = LoginThrottle::Clock::now();
+  for (int i = 0; i < 4; ++i) t.failed("a", t0 + seconds(i));
+  EXPECT_EQ(t.wait("a", t0 + seconds(4)).count(), 0);
+  t.failed("a", t0 + seconds(4));
+  EXPECT_EQ(t.wait("a", t0 + seconds(10)).count(), 50);  // the first failure leaves at 60 s
+  EXPECT_EQ(t.wait("b", t0 + seconds(10)).count(), 0);   // another address
+  EXPECT_EQ(t.wait("a", t0 + seconds(60)).count(), 0);   // four left in the window
+  t.succeeded("a");
+  t.failed("a", t0 + seconds(61));
+  EXPECT_EQ(t.wait("a", t0 + seconds(61)).count(), 0);
+
+  Sessions s(seconds(3600), 2);
+  const std::string a = s.open(), b = s.open();
+  EXPECT_EQ(a.size(), 32u);  // 128 bits as hex
+  EXPECT_TRUE(s.valid(a) && s.valid(b));
+  EXPECT_FALSE(s.valid("not-a-session"));
+  const std::string c = s.open();  // beyond the cap the oldest goes
+  EXPECT_FALSE(s.valid(a));
+  EXPECT_TRUE(s.valid(b) && s.valid(c));
+  EXPECT_TRUE(s.close(b));
+  EXPECT_FALSE(s.valid(b));
+  EXPECT_FALSE(s.close(b));
 }
 
 TEST(ServerHttp, TargetsAreDecodedPerSegment) {

@@ -119,6 +119,10 @@ int cmd_serve(Args& args) {
   l.max_study_jobs = static_cast<std::int64_t>(
       number_option(args, "max-study-jobs", static_cast<double>(l.max_study_jobs)));
   l.max_connections = args.integer("max-connections", l.max_connections);
+  l.max_queued = static_cast<std::int64_t>(
+      number_option(args, "max-queued", static_cast<double>(l.max_queued)));
+  l.max_queued_per_client = static_cast<std::int64_t>(
+      number_option(args, "max-queued-per-client", static_cast<double>(l.max_queued_per_client)));
   l.max_built_particles = static_cast<std::int64_t>(
       number_option(args, "build-budget", static_cast<double>(l.max_built_particles)));
   if (auto v = args.option("image-cache-mb")) {

@@ -94,6 +94,8 @@ usage:
                 --max-particle-steps N (1e12)  --max-disk-gb G (50)  --max-study-jobs N (100)
                 --max-connections N (512)  --image-cache-mb M (64, rendered images in memory)
                 --build-budget N (2e5: a request builds the scene of at most N particles)
+                --max-queued N (1000 jobs waiting, 503 beyond)
+                --max-queued-per-client N (200 jobs waiting from one address, 429 beyond)
       timeouts [s]: --header-timeout 10  --body-timeout 30  --idle-timeout 60
                 --write-timeout 60  --keepalive 15 (comments on quiet event streams)
                 --build-timeout 20 (a request's sizing and scene build)

@@ -20,6 +20,14 @@ struct Progress {
   double fraction() const { return steps > 0 ? double(step) / double(steps) : 1.0; }
 };
 
+// Work that follows the time loop (the FE check of fe/, run by a summary
+// addition of run/execute.hpp): its name, the part of it done (0-1) and
+// its seconds so far.
+struct StageProgress {
+  std::string stage;
+  double fraction = 0.0, elapsed_s = 0.0;
+};
+
 struct RunResult {
   std::string status = "completed";  // completed | cancelled | diverged
   std::string message;
@@ -40,6 +48,8 @@ class RunObserver {
   // then every PreparedJob::snapshot_every steps and the last step.
   virtual void on_snapshot(const Simulation&, std::int64_t /*frame*/) {}
   virtual void on_progress(const Progress&) {}
+  // After the time loop, before summary.json: a stage that follows the run.
+  virtual void on_stage(const StageProgress&) {}
   virtual bool cancelled() { return false; }
   virtual void on_finish(const PreparedJob&, const RunResult&) {}
 };
@@ -61,6 +71,9 @@ class ObserverList : public RunObserver {
   }
   void on_progress(const Progress& p) override {
     for (auto* o : list_) o->on_progress(p);
+  }
+  void on_stage(const StageProgress& s) override {
+    for (auto* o : list_) o->on_stage(s);
   }
   bool cancelled() override {
     for (auto* o : list_) {

@@ -2,7 +2,7 @@
 // ETA, cancel, and a selection to compare.
 import { duration, eng, eta, int, when } from "./format.js";
 import { events } from "./events.js";
-import { cancelJob, progressBar, statusBadge } from "./job-parts.js";
+import { cancelJob, feCheckBadge, progressBar, stageName, statusBadge } from "./job-parts.js";
 import { h } from "./ui.js";
 
 export function jobsView(root) {
@@ -54,7 +54,8 @@ export function jobsView(root) {
       h("td", {}, pick),
       h("td", {}, h("a", { href: `#/jobs/${job.jobID}`, class: "job-link" }, job.name || job.jobID.slice(0, 8)),
         h("div", { class: "muted mono", style: "font-size:11px" }, job.jobID.slice(0, 8))),
-      h("td", { title: job.message || "" }, statusBadge(job.status),
+      h("td", { title: job.message || "" }, statusBadge(job.status), feCheckBadge(job),
+        job.status === "running" && job.stage === "fe_check" ? h("div", { class: "muted small-note" }, stageName(job)) : null,
         job.status === "failed" && job.message ? h("div", { class: "small-note failure" }, job.message) : null),
       h("td", {}, progressBar(job)),
       h("td", { class: "num hide-narrow" }, `${int(job.step)} / ${int(job.steps)}`),

@@ -5,7 +5,7 @@ import { ApiError, get, text } from "./api.js";
 import { lineChart } from "./charts.js";
 import { events } from "./events.js";
 import { bytes, duration, eng, eta, int, sig } from "./format.js";
-import { cancelJob, progressBar, statusBadge } from "./job-parts.js";
+import { cancelJob, feCheckBadge, progressBar, stageName, statusBadge } from "./job-parts.js";
 import { filletPanel } from "./result-fillet.js";
 import { verdictPanel } from "./result-verdict.js";
 import { frameTimes, historyCharts, meshingZone, parseCsv } from "./results-data.js";
@@ -39,12 +39,13 @@ export function resultView(root, id) {
   function showHead(job) {
     const active = job.status === "accepted" || job.status === "running";
     // Progress events come four times a second: redraw only on a change.
-    const key = `${job.name}|${job.status}|${job.message}`;
+    const key = `${job.name}|${job.status}|${job.message}|${job.fe_check?.status}`;
     if (key === headKey) return;
     headKey = key;
     put(head,
       h("h1", { id: "job-title" }, job.name || "job"),
       statusBadge(job.status),
+      feCheckBadge(job),
       h("span", { class: "message" }, job.message || ""),
       h("span", { style: "flex:1" }),
       active ? h("button", { type: "button", class: "danger", onclick: () => cancelJob(job) }, "Cancel job") : null);
@@ -61,7 +62,10 @@ export function resultView(root, id) {
         h("dl", { class: "kv", style: "margin-top:12px" },
           item("Step", `${int(job.step)} / ${int(job.steps)}`),
           item("Simulated", `${eng(job.simulated_s, "s")} of ${eng(job.end_s, "s")}`),
-          item("Wall time", duration(job.wall_s)),
+          job.stage ? item("Stage", stageName(job)) : null,
+          item("Wall time", job.fe_check && job.stage_wall_s
+            ? `${duration(job.wall_s)} (SPH ${duration(job.stage_wall_s.sph)}, FE ${duration(job.stage_wall_s.fe_check ?? 0)})`
+            : duration(job.wall_s)),
           item("ETA", eta(job)),
           item("Particles", int(job.particles)))));
   }
