@@ -33,11 +33,14 @@ usage:
       whose id contains TEXT); prints a table and writes DIR/validation.json
       (DIR defaults to ./validation)
   gearsph validate --study accuracy [--quick] [--cases N] [--out DIR] [--threads N]
+                   [--fillet-tolerance T] [--replot DIR/accuracy.json]
       the accuracy map: static checks of pinions drawn from the space users work
       in (z 8-60, m 1-10 mm, 14.5-25 deg, x -0.5..+0.8, rims, 50-500 N/mm, pitch,
       HPSTC, tip), each against its FE check; 40 cases (--quick: 5); writes
       DIR/accuracy.json with the errors' median, 95th percentile and worst
-      (DIR defaults to ./accuracy)
+      (DIR defaults to ./accuracy); --fillet-tolerance: fail when a fillet
+      tension peak is further than T (0.05: 5 %) from FE; --replot draws an
+      earlier map's accuracy_map.png again
   gearsph study stability [--out DIR] [--full] [--only TEXT] [--threads N] [--no-images]
       the stability study: failure-prone cases x methods, measured; writes
       DIR/stability.csv, stability.json, stability_table.png and fields/*.png
