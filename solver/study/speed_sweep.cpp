@@ -226,7 +226,7 @@ json sweep_report(const SpeedSweepPlan& plan, const std::vector<json>& summaries
   });
   std::vector<double> f, zetas;
   json kv_sph = json::array(), dte_sph = json::array(), loss_sph = json::array();
-  json steady = json::array(), wall = json::array();
+  json steady = json::array(), wall = json::array(), work = json::array(), end = json::array();
   std::vector<double> f_ran, kv_ran;
   for (std::size_t k : order) {
     f.push_back(plan.mesh_frequency_Hz[k]);
@@ -239,6 +239,8 @@ json sweep_report(const SpeedSweepPlan& plan, const std::vector<json>& summaries
                          ? s["analysis"]["dynamics"].value("steady", false)
                          : false);
     wall.push_back(s.is_object() ? s.value("wall_s", 0.0) : 0.0);
+    work.push_back(plan.particle_steps[k]);
+    end.push_back(plan.jobs[k].at("time").at("end_s"));
     if (std::isfinite(kv)) {
       f_ran.push_back(f.back());
       kv_ran.push_back(kv);
@@ -281,6 +283,9 @@ json sweep_report(const SpeedSweepPlan& plan, const std::vector<json>& summaries
       {"contact_loss_fraction_sdof", loss_sdof},
       {"steady_sph", steady},
       {"wall_s_sph", wall},
+      {"planned_particle_steps", work},
+      {"planned_end_s", end},
+      {"transient_allowance_s", plan.transient_allowance_s},
       {"resonance_Hz_sph", f_ran.size() >= 3 ? json(dyn::peak_abscissa(f_ran, kv_ran)) : json()},
       {"resonance_Hz_sdof", dyn::peak_abscissa(fine, kv_fine)},
       {"resonance_Hz_iso", plan.iso_resonance_Hz > 0.0 ? json(plan.iso_resonance_Hz) : json()},
