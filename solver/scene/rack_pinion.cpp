@@ -944,7 +944,10 @@ Scene build_rack_pinion(const SceneInput& in) {
       set_hub_inertia(sim, L, pinion, mat_p, pj.at("attached_inertia_kg_m2").get<double>());
   attach_rack_mass(sim, L, s.at("rack").at("attached_mass_kg").get<double>());
   load_rack_back(sim, L);
-  sim.domain = grown_bounds(sim.particles, 4.0 * L.tip_radius);
+  // The rack travels |v| t along x: a long run (a speed sweep's) carried
+  // its leading end out of a domain grown by the tip radii alone.
+  sim.domain =
+      grown_bounds(sim.particles, 4.0 * L.tip_radius + std::abs(L.rack_velocity) * L.end_s);
   const double omega_mesh = set_mesh_dynamics(scene, L, pinion, mat_p, mat_r);
   if (L.load_N > 0.0) {
     L.iso_dynamics = gear::dynamics::iso_rack_pinion_dynamics(pinion, L.face_width_m, mat_p.E,

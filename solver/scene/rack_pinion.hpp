@@ -141,6 +141,8 @@ nlohmann::json analyse_mesh_dynamics(const GearLayout& layout, const History& h)
 // a damping ratio.
 gear::dynamics::SdofModel lumped_mesh_model(const GearLayout& layout, double k_single_N_m,
                                             double damping_ratio);
+// Whether the pair has one: a contact ratio between 1 and 2 (two levels).
+bool has_lumped_mesh_model(const GearLayout& layout);
 // The model's blocks of the scene's description (model.lumped_model): its
 // inputs and natural frequency, ISO 6336-1's resonance beside them.
 nlohmann::json describe_lumped_model(const GearLayout& layout);

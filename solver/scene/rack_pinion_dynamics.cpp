@@ -67,8 +67,18 @@ gear::dynamics::SdofModel lumped_mesh_model(const GearLayout& L, double k_single
   return m;
 }
 
+bool has_lumped_mesh_model(const GearLayout& L) {
+  return L.path.contact_ratio > 1.0 && L.path.contact_ratio < 2.0;
+}
+
 nlohmann::json describe_lumped_model(const GearLayout& L) {
   namespace dyn = gear::dynamics;
+  if (!has_lumped_mesh_model(L)) {
+    return {{"note",
+             "no lumped model: its two-level stiffness needs a contact ratio between 1 "
+             "and 2, this pair's is " +
+                 std::to_string(L.path.contact_ratio)}};
+  }
   const double k_s = ideal_single_pair_stiffness_N_m(L);
   const dyn::SdofModel m = lumped_mesh_model(L, k_s, 0.0);
   nlohmann::json out = {
@@ -164,7 +174,8 @@ nlohmann::json analyse_mesh_dynamics(const GearLayout& L, const History& h) {
                      "log decrement of the transmission error's extremes in the start "
                      "transient; -1: fewer than three extremes"}};
   out["lumped_model"] = lumped;
-  if (ring.damping_ratio > 0.0 && s.mesh_frequency_Hz > 0.0 && L.load_N > 0.0) {
+  if (ring.damping_ratio > 0.0 && s.mesh_frequency_Hz > 0.0 && L.load_N > 0.0 &&
+      has_lumped_mesh_model(L)) {
     const dyn::SdofModel m =
         lumped_mesh_model(L, ideal_single_pair_stiffness_N_m(L), ring.damping_ratio);
     dyn::SdofState y = dyn::static_state(m);

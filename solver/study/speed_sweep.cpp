@@ -156,6 +156,10 @@ SpeedSweepPlan plan_speed_sweep(const SpeedSweepRequest& req, const SweepLimits&
   probe["time"]["end_s"] = 1e-5;
   const PreparedJob prepared = prepare_job(probe, 1);
   plan.lumped_model = prepared.scene.description.at("lumped_model");
+  if (!plan.lumped_model.contains("natural_frequency_Hz")) {
+    throw InvalidJob(std::vector<JobIssue>{
+        {"/job/scene/pinion", plan.lumped_model.value("note", std::string("no lumped model"))}});
+  }
   plan.natural_frequency_Hz = plan.lumped_model.at("natural_frequency_Hz").get<double>();
   if (plan.lumped_model.contains("iso6336_1_method_b")) {
     plan.iso_resonance_Hz =
