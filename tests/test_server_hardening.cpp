@@ -728,7 +728,7 @@ TEST(CliHelp, ListsEveryOptionOfEveryCommand) {
       {"cmd_geometry.cpp", {"geometry"}}, {"cmd_render.cpp", {"render", "plot"}},
       {"cmd_serve.cpp", {"serve"}},       {"cmd_submit.cpp", {"submit"}},
       {"cmd_worker.cpp", {"worker"}},     {"cmd_fe.cpp", {"fe"}},
-      {"cmd_rate.cpp", {"rate"}}};
+      {"cmd_rate.cpp", {"rate"}},         {"cmd_speed_sweep.cpp", {"study"}}};
   const std::regex read_option(
       R"re((?:option|flag|integer)\("([a-z0-9-]+)"|args, "([a-z0-9-]+)")re");
   int files = 0;

@@ -73,6 +73,10 @@ std::vector<std::string> Args::positional() const {
   return args_;
 }
 
+std::string Args::positional_first() const {
+  return !args_.empty() && args_[0].rfind("--", 0) != 0 ? args_[0] : std::string();
+}
+
 std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read " + path);

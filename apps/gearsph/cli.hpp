@@ -18,6 +18,8 @@ class Args {
   double grace_seconds(const std::string& name);
   // Remaining positional arguments; throws on a leftover --option.
   std::vector<std::string> positional() const;
+  // The first argument when it is not an option (a sub-subcommand), else "".
+  std::string positional_first() const;
 
  private:
   std::vector<std::string> args_;

@@ -209,7 +209,10 @@ std::string file_name(const Cell& c) {
 
 }  // namespace
 
+int cmd_speed_sweep(Args& args);  // cmd_speed_sweep.cpp
+
 int cmd_study(Args& args) {
+  if (args.positional_first() == "speed-sweep") return cmd_speed_sweep(args);
   const bool full = args.flag("full");
   [[maybe_unused]] const bool no_images = args.flag("no-images");
   const std::string out = args.option("out").value_or("stability");

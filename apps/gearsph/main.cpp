@@ -45,6 +45,13 @@ usage:
       the stability study: failure-prone cases x methods, measured; writes
       DIR/stability.csv, stability.json, stability_table.png and fields/*.png
       (DIR defaults to ./stability; --full adds the long cells, docs/stability.md)
+  gearsph study speed-sweep JOB.json --out DIR [--ratios 0.2,0.4,...] [--steady-periods N]
+                [--threads N] [--max-particle-steps N] [--lumped-only] [--damping-ratio Z]
+      a loaded rack_pinion job at several speeds (ratios of the mesh frequency
+      to the lumped model's natural frequency), each run until its steady mesh
+      has lasted N (20) mesh periods, beside the lumped model and ISO 6336-1's
+      resonance; writes DIR/speed_sweep.json, speed_sweep.png and runs/
+      (docs/dynamics.md)
   gearsph bench [--quick] [--out DIR] [--repeats N] [--no-pysph] [--python PATH]
                 [--pysph-script FILE] [--skip-full] [--max-particles N]
                 [--skip-study] [--study-jobs N]

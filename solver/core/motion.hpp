@@ -32,6 +32,11 @@ struct Motion {
   double attached_inertia = 0.0;  // rigidly attached but not modelled [kg m^2 / m]
   double group_inertia = 0.0;     // of the group's particles about (cx, cy) [kg m^2 / m]
   double alpha = 0.0;             // angular acceleration at the last kick [rad/s^2]
+  // GuidedX: the x inertia of each member over its own mass, 1 + (attached
+  // mass) / (the group's mass): a mass that moves with the guided group but
+  // is not modelled (the rack bar beyond the segment), shared in proportion
+  // to the members' masses.
+  double inertia_scale = 1.0;
 
   static Motion free() { return {}; }
   static Motion fixed(std::string n) { return {Kind::Fixed, std::move(n)}; }

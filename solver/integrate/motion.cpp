@@ -98,14 +98,16 @@ void open_run(const Kinematics& k, const Motion& m, std::size_t lo, std::size_t 
         y[i] += dt * vy[i];
       }
       break;
-    case Motion::Kind::GuidedX:
+    case Motion::Kind::GuidedX: {
+      const double kick = dt_half / m.inertia_scale;
 #pragma omp simd
       for (std::size_t i = lo; i < hi; ++i) {
-        vx[i] += dt_half * (k.ax[i] + k.ext_ax[i]);
+        vx[i] += kick * (k.ax[i] + k.ext_ax[i]);
         vy[i] = 0.0;
         x[i] += dt * vx[i];
       }
       break;
+    }
     case Motion::Kind::Fixed:
 #pragma omp simd
       for (std::size_t i = lo; i < hi; ++i) {
@@ -157,13 +159,19 @@ KickPowers close_run(const Kinematics& k, const Motion& m, std::size_t lo, std::
         vy[i] += dt_half * (k.ay[i] + k.ext_ay[i]);
       }
       break;
-    case Motion::Kind::GuidedX:  // v_y = 0: the guide does no work
-#pragma omp simd
+    case Motion::Kind::GuidedX: {  // v_y = 0: the guide does no work
+      // An attached mass pulls each member with m a (1 / scale - 1), where
+      // m a is the member's force: its power is the attached mass's loss
+      // of kinetic energy, which the balance counts as drive work.
+      const double kick = dt_half / m.inertia_scale, held = 1.0 / m.inertia_scale - 1.0;
+#pragma omp simd reduction(+ : drive)
       for (std::size_t i = lo; i < hi; ++i) {
-        vx[i] += dt_half * (k.ax[i] + k.ext_ax[i]);
+        vx[i] += kick * (k.ax[i] + k.ext_ax[i]);
         vy[i] = 0.0;
+        drive += held * mass[i] * (k.ax[i] + k.ext_ax[i]) * vx[i];
       }
       break;
+    }
     case Motion::Kind::Fixed:
     case Motion::Kind::Velocity:
     case Motion::Kind::Rotation: {

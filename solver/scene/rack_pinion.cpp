@@ -615,7 +615,7 @@ void set_initial_velocities(Simulation& sim, const GearLayout& L) {
 // pinion's steel (its full outline less the modelled particles, about the
 // axis) and what the job attaches (shaft, motor). Returns the whole
 // pinion's inertia per unit face width.
-double set_hub_inertia(Simulation& sim, const GearLayout& L, const geometry::PinionGeometry& pinion,
+double set_hub_inertia(Simulation& sim, GearLayout& L, const geometry::PinionGeometry& pinion,
                        const Material& mat, double attached_kg_m2) {
   const Particles& p = sim.particles;
   const Body& pin_body = sim.bodies[0];
@@ -628,7 +628,25 @@ double set_hub_inertia(Simulation& sim, const GearLayout& L, const geometry::Pin
   const double attached_inertia =
       std::max(0.0, pinion_inertia - modelled_inertia) + attached_kg_m2 / L.face_width_m;
   sim.motions[1].attached_inertia = L.torque_Nm ? attached_inertia : 0.0;
+  L.pinion_inertia_kg_m2 = pinion_inertia * L.face_width_m;
+  L.pinion_attached_inertia_kg_m2 = attached_kg_m2;
   return pinion_inertia;
+}
+
+// What moves with the rack beyond the modelled segment (rack.attached_mass_kg)
+// rides on its guided back, as a pinion's attached inertia rides on its hub:
+// the guided particles' x inertia grows by it, in proportion to their masses.
+void attach_rack_mass(Simulation& sim, GearLayout& L, double attached_kg) {
+  const Particles& p = sim.particles;
+  const Body& rack_body = sim.bodies[1];
+  double rack = 0.0, guided = 0.0;
+  for (std::size_t i = rack_body.begin; i < rack_body.end; ++i) {
+    rack += p.mass[i];
+    if (p.motion[i] == 2) guided += p.mass[i];
+  }
+  L.rack_mass_kg = rack * L.face_width_m;
+  L.rack_attached_mass_kg = attached_kg;
+  if (guided > 0.0) sim.motions[2].inertia_scale = 1.0 + attached_kg / L.face_width_m / guided;
 }
 
 // Resisting force on the rack back, against its motion, per unit thickness.
@@ -655,7 +673,8 @@ double set_mesh_dynamics(Scene& scene, GearLayout& L, const geometry::PinionGeom
   const Particles& p = scene.sim.particles;
   const Body& rack_body = scene.sim.bodies[1];
   L.iso_mesh_stiffness = gear::iso_single_pair_stiffness(pinion, mat_p.E, mat_r.E);
-  double rack_mass = 0.0;
+  // The rack's inertia along x with what the job attaches to it.
+  double rack_mass = L.rack_attached_mass_kg / L.face_width_m;
   for (std::size_t i = rack_body.begin; i < rack_body.end; ++i) rack_mass += p.mass[i];
   const double k_x = L.iso_mesh_stiffness * std::cos(L.pressure_angle) * std::cos(L.pressure_angle);
   const double omega_mesh = std::sqrt(k_x / rack_mass);
@@ -780,7 +799,9 @@ nlohmann::json describe_rack(const Simulation& sim, const GearLayout& L,
           {"pitch_m", rack.pitch()},
           {"back_thickness_m", rack.spec().back_thickness_m - support},
           {"guided_layer_m", support},
-          {"guided_back_particles", guided}};
+          {"guided_back_particles", guided},
+          {"mass_kg", L.rack_mass_kg},
+          {"attached_mass_kg", L.rack_attached_mass_kg}};
 }
 
 // The mesh as modelled: how it starts and how stiff it is.
@@ -910,6 +931,7 @@ Scene build_rack_pinion(const SceneInput& in) {
       read_material(s.contains("pinion_material") ? s.at("pinion_material") : s.at("material"));
   const Material mat_r =
       read_material(s.contains("rack_material") ? s.at("rack_material") : s.at("material"));
+  L.play_m = pinion.spec().backlash_m + rack.spec().backlash_m;
   L.contact_modulus =
       1.0 / ((1.0 - mat_p.nu * mat_p.nu) / mat_p.E + (1.0 - mat_r.nu * mat_r.nu) / mat_r.E);
   choose_resolved_contact(s, in.discretization, L, pinion, place, sp);
@@ -920,9 +942,18 @@ Scene build_rack_pinion(const SceneInput& in) {
   set_initial_velocities(sim, L);
   const double pinion_inertia =
       set_hub_inertia(sim, L, pinion, mat_p, pj.at("attached_inertia_kg_m2").get<double>());
+  attach_rack_mass(sim, L, s.at("rack").at("attached_mass_kg").get<double>());
   load_rack_back(sim, L);
-  sim.domain = grown_bounds(sim.particles, 4.0 * L.tip_radius);
+  // The rack travels |v| t along x: a long run (a speed sweep's) carried
+  // its leading end out of a domain grown by the tip radii alone.
+  sim.domain =
+      grown_bounds(sim.particles, 4.0 * L.tip_radius + std::abs(L.rack_velocity) * L.end_s);
   const double omega_mesh = set_mesh_dynamics(scene, L, pinion, mat_p, mat_r);
+  if (L.load_N > 0.0) {
+    L.iso_dynamics = gear::dynamics::iso_rack_pinion_dynamics(pinion, L.face_width_m, mat_p.E,
+                                                              mat_r.E, mat_p.rho0, L.load_N,
+                                                              std::abs(L.omega) * 30.0 / kPi);
+  }
 
   const double turned = place.pinion.angle;  // tooth 0's axis is at -pi/2 + turned
   const std::vector<int> tooth_of = assign_teeth(sim, L, turned);
@@ -946,6 +977,7 @@ Scene build_rack_pinion(const SceneInput& in) {
   scene.description["pinion"] =
       describe_pinion(sim, pj, L, pinion, outlines.r_drive, pinion_inertia);
   scene.description["rack"] = describe_rack(sim, L, rack, sp.support);
+  scene.description["lumped_model"] = describe_lumped_model(L);
   if (L.resolved.spacing > 0.0) {
     // The particles carry the contact: its force on single pairs, as in the
     // hertz scene, not spread over the surface.

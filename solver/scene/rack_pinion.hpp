@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "solver/gear/gear_rating.hpp"
+#include "solver/gear/mesh_dynamics_iso.hpp"
+#include "solver/gear/mesh_dynamics_sdof.hpp"
 #include "solver/run/history.hpp"
 #include "solver/scene/rack_pinion_roots.hpp"
 
@@ -45,6 +47,15 @@ struct GearLayout {
   // mesh spring, dv sqrt(k m_rack) (per gear) [N].
   double impact_force_bound_N = 0.0;
   bool quasi_static = false;
+  // The masses the lumped mesh model takes (gear/mesh_dynamics_sdof.hpp),
+  // per gear: the modelled rack segment's and what the job attaches to it
+  // [kg], the whole pinion's polar inertia and what turns with it [kg m^2],
+  // and the play between the flanks along the pitch line [m].
+  double rack_mass_kg = 0.0, rack_attached_mass_kg = 0.0;
+  double pinion_inertia_kg_m2 = 0.0, pinion_attached_inertia_kg_m2 = 0.0;
+  double play_m = 0.0;
+  // ISO 6336-1 method B at the run's speed and load (loaded runs only).
+  std::optional<gear::dynamics::IsoDynamics> iso_dynamics;
   // Static checks: where tooth 0 is loaded ("pitch", "hpstc", "lpstc",
   // "tip" or "radius") and the radius on the pinion [m].
   std::string contact_point;
@@ -117,6 +128,26 @@ std::vector<int> counted_pinion_teeth(const nlohmann::json& choice, int teeth, d
 std::vector<int> static_check_pinion_teeth(const nlohmann::json& pinion);
 // Why, in words, for the summary.
 std::string static_check_teeth_reason(const nlohmann::json& pinion);
+
+// analysis.dynamics of a loaded dynamic run (rack_pinion_dynamics.cpp): the
+// steady mesh after the start transient, the ringing's damping, and the
+// lumped model of the same pair at the run's speed beside ISO 6336-1.
+nlohmann::json analyse_mesh_dynamics(const GearLayout& layout, const History& h);
+
+// The lumped model of the pair as the scene models it (masses with what is
+// attached, a held pinion as infinitely heavy, the play along the line of
+// action, the load along it), with a single-pair stiffness k_single [N/m
+// per gear] and the double-pair one kIsoDoubleOverSinglePair times it, and
+// a damping ratio.
+gear::dynamics::SdofModel lumped_mesh_model(const GearLayout& layout, double k_single_N_m,
+                                            double damping_ratio);
+// Whether the pair has one: a contact ratio between 1 and 2 (two levels).
+bool has_lumped_mesh_model(const GearLayout& layout);
+// The model's blocks of the scene's description (model.lumped_model): its
+// inputs and natural frequency, ISO 6336-1's resonance beside them.
+nlohmann::json describe_lumped_model(const GearLayout& layout);
+// ISO's c' / C_M per gear [N/m]: the ideal elastic pair's single stiffness.
+double ideal_single_pair_stiffness_N_m(const GearLayout& layout);
 
 nlohmann::json analyse_rack_pinion(const GearLayout& layout, const History& h,
                                    const Simulation& final_state);

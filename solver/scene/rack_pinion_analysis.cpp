@@ -560,6 +560,11 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
     }
   }
 
+  // A loaded dynamic run: its steady mesh and the lumped model beside it.
+  if (!L.quasi_static && (L.load_N > 0 || L.torque_Nm) && h.rows() > 1) {
+    a["dynamics"] = analyse_mesh_dynamics(L, h);
+  }
+
   const PeakPressure p = peak_contact_pressure(L, h, t);
   a["summary_fields"] = {
       {"max_contact_pressure_Pa", p.pressure_Pa},

@@ -1,0 +1,133 @@
+// The speed sweep's request and plan (solver/study/speed_sweep.hpp) and the
+// masses the lumped model takes from the scene: refusals at their JSON
+// pointers before any job runs, the speeds' jobs at the ratios asked for,
+// and rack.attached_mass_kg on the rack's guided back.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "solver/job/job.hpp"
+#include "solver/study/speed_sweep.hpp"
+
+namespace gearsph::study {
+namespace {
+
+using json = nlohmann::json;
+
+// The paper's pair at 5 kN on a coarse lattice: a scene built in a second.
+json loaded_job() {
+  return {{"name", "sweep-test"},
+          {"scene",
+           {{"type", "rack_pinion"},
+            {"pinion", {{"omega_rad_s", -15.0}}},
+            {"rack", {{"velocity_m_s", -0.36}, {"load_N", 5000.0}}}}},
+          {"discretization", {{"particles", "lattice"}, {"spacing_mm", 2.0}}}};
+}
+
+std::vector<std::string> pointers_of(const json& request) {
+  try {
+    read_speed_sweep(request);
+  } catch (const InvalidJob& e) {
+    std::vector<std::string> out;
+    for (const JobIssue& i : e.issues) {
+      EXPECT_FALSE(i.message.empty()) << i.pointer;
+      out.push_back(i.pointer);
+    }
+    return out;
+  }
+  return {};
+}
+
+TEST(SpeedSweep, RefusesBadRequestsAtTheirPointers) {
+  EXPECT_TRUE(pointers_of({{"job", loaded_job()}, {"ratios", {0.5, 1.0}}}).empty());
+  EXPECT_EQ(pointers_of({{"job", loaded_job()}, {"ratios", {0.5, -1.0, 0.0}}}),
+            (std::vector<std::string>{"/ratios/1", "/ratios/2"}));
+  EXPECT_EQ(pointers_of({{"job", loaded_job()}, {"ratios", {0.5, "fast"}}}),
+            std::vector<std::string>{"/ratios/1"});
+  EXPECT_EQ(pointers_of({{"job", loaded_job()}, {"ratios", json::array()}}),
+            std::vector<std::string>{"/ratios"});
+  json unloaded = loaded_job();
+  unloaded["scene"]["rack"]["load_N"] = 0.0;
+  EXPECT_EQ(pointers_of({{"job", unloaded}}), std::vector<std::string>{"/job/scene/rack/load_N"});
+  json still = loaded_job();
+  still["scene"]["quasi_static"] = true;
+  EXPECT_EQ(pointers_of({{"job", still}}), std::vector<std::string>{"/job/scene/quasi_static"});
+  json plate = {{"scene", {{"type", "plate"}}}};
+  EXPECT_EQ(pointers_of({{"job", plate}}), std::vector<std::string>{"/job/scene/type"});
+  // The job's own refusals, under /job.
+  json typo = loaded_job();
+  typo["scene"]["rack"]["attached_mass_kg"] = -1.0;
+  EXPECT_EQ(pointers_of({{"job", typo}}),
+            std::vector<std::string>{"/job/scene/rack/attached_mass_kg"});
+  EXPECT_EQ(pointers_of({{"ratios", {1.0}}}), std::vector<std::string>{"/job"});
+}
+
+TEST(SpeedSweep, PlansEachSpeedAtItsRatioAndRefusesJobsOverTheLimits) {
+  const SpeedSweepRequest req =
+      read_speed_sweep({{"job", loaded_job()}, {"ratios", {0.5, 1.0}}, {"steady_periods", 2}});
+  const SpeedSweepPlan plan = plan_speed_sweep(req, SweepLimits{});
+  ASSERT_EQ(plan.jobs.size(), 2u);
+  const double f_n = plan.natural_frequency_Hz;
+  EXPECT_GT(f_n, 0.0);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const json& s = plan.jobs[k].at("scene");
+    const double omega = s.at("pinion").at("omega_rad_s").get<double>();
+    // f_mesh = |omega| z / (2 pi), the rack at the pitch line's speed.
+    EXPECT_NEAR(std::abs(omega) * 12 / (2 * std::numbers::pi), req.ratios[k] * f_n, 1e-9 * f_n);
+    EXPECT_LT(omega, 0.0);  // the job's sense of rotation
+    EXPECT_NEAR(s.at("rack").at("velocity_m_s").get<double>(), omega * 0.024, 1e-12);
+    EXPECT_EQ(s.at("pinion").at("modelled_teeth"), "all");
+  }
+  // Every speed models the same rack: the same masses, one natural frequency.
+  EXPECT_EQ(plan.jobs[0]["scene"]["rack"]["modelled_teeth"],
+            plan.jobs[1]["scene"]["rack"]["modelled_teeth"]);
+  SweepLimits tight;
+  tight.max_particle_steps = 1e3;
+  try {
+    plan_speed_sweep(req, tight);
+    ADD_FAILURE() << "a sweep over the limits was planned";
+  } catch (const InvalidJob& e) {
+    ASSERT_EQ(e.issues.size(), 2u);
+    EXPECT_EQ(e.issues[0].pointer, "/ratios/0");
+    EXPECT_EQ(e.issues[1].pointer, "/ratios/1");
+  }
+}
+
+// The lumped model's mass: the rack's, with what is attached, over
+// cos^2(alpha) for a pinion held at speed; the attached mass joins the
+// guided back's x inertia in proportion to its particles' masses.
+TEST(SpeedSweep, AttachedRackMassJoinsTheGuidedBack) {
+  json job = loaded_job();
+  const PreparedJob bare = prepare_job(job, 1);
+  job["scene"]["rack"]["attached_mass_kg"] = 3.0;
+  const PreparedJob heavy = prepare_job(job, 1);
+  const json& lm0 = bare.scene.description.at("lumped_model");
+  const json& lm1 = heavy.scene.description.at("lumped_model");
+  const double c = std::cos(20.0 * std::numbers::pi / 180.0);
+  const double rack = lm0.at("rack_mass_kg").get<double>();
+  EXPECT_NEAR(lm0.at("mass_on_line_of_action_kg").get<double>(), rack / (c * c), 1e-9 * rack);
+  EXPECT_NEAR(lm1.at("mass_on_line_of_action_kg").get<double>(), (rack + 3.0) / (c * c),
+              1e-9 * rack);
+  const double b = 0.02;
+  double guided = 0.0;
+  const Simulation& sim = heavy.scene.sim;
+  for (std::size_t i = sim.bodies[1].begin; i < sim.bodies[1].end; ++i) {
+    if (sim.particles.motion[i] == 2) guided += sim.particles.mass[i];
+  }
+  EXPECT_NEAR(sim.motions[2].inertia_scale, 1.0 + 3.0 / b / guided, 1e-9);
+  EXPECT_DOUBLE_EQ(bare.scene.sim.motions[2].inertia_scale, 1.0);
+  // The rack's mesh mode (used to relax static checks) slows with it.
+  const double w0 = bare.scene.description.at("rack_mesh_mode_rad_s").get<double>();
+  const double w1 = heavy.scene.description.at("rack_mesh_mode_rad_s").get<double>();
+  EXPECT_NEAR(w1 / w0, std::sqrt(rack / (rack + 3.0)), 1e-9);
+  // The sweep's lumped model from the description.
+  const gear::dynamics::SdofModel m = sdof_from_description(lm1, 0.03);
+  EXPECT_DOUBLE_EQ(m.mass_kg, lm1.at("mass_on_line_of_action_kg").get<double>());
+  EXPECT_NEAR(m.stiffness.mean(), lm1.at("mean_stiffness_N_m").get<double>(),
+              1e-6 * m.stiffness.mean());
+  EXPECT_NEAR(m.load_N, 5000.0 / c, 1e-9);
+}
+
+}  // namespace
+}  // namespace gearsph::study
