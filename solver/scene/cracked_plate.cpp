@@ -399,9 +399,12 @@ double grow_stage(Growth& g, Simulation& sim, const Reference& ref) {
     g.stop = std::to_string(done) + " increments, as asked";
     return 0.0;
   }
+  // Every tip grown at once (a centre crack's two), then each new tip's
+  // room checked on the grown crack.
+  geometry::Crack grown = crack;
+  grown.path.push_back(next[0]);
+  if (next.size() > 1) grown.path.insert(grown.path.begin(), next[1]);
   for (const geometry::Point q : next) {
-    geometry::Crack grown = crack;
-    grown.path.push_back(q);
     const double rho = clear_radius(q, grown, g.half);
     if (rho < kLeastSpacingsAlong * g.dx) {
       g.outcome = "free_surface";
@@ -412,12 +415,8 @@ double grow_stage(Growth& g, Simulation& sim, const Reference& ref) {
       return 0.0;
     }
   }
-  crack.path.push_back(next[0]);
-  g.paths[0].push_back(next[0]);
-  if (next.size() > 1) {
-    crack.path.insert(crack.path.begin(), next[1]);
-    g.paths[1].push_back(next[1]);
-  }
+  crack = grown;
+  for (std::size_t t = 0; t < next.size(); ++t) g.paths[t].push_back(next[t]);
   // The pairs and their corrections built again for the new cut, on the
   // same reference positions: every particle's (the cost is measured per
   // increment against the stage's settling).
