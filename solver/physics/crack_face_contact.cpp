@@ -38,6 +38,12 @@ std::vector<CrackFacePair> crack_face_pairs(const Simulation& sim,
   return faces;
 }
 
+double crack_face_force(const Simulation& sim, const CrackFacePair& f) {
+  const Particles& p = sim.particles;
+  const double g = (p.x[f.j] - p.x[f.i]) * f.nx + (p.y[f.j] - p.y[f.i]) * f.ny;
+  return g < f.gap ? f.stiffness * (f.gap - g) : 0.0;  // open: no tension across
+}
+
 std::size_t crack_face_contact(Simulation& sim) {
   Particles& p = sim.particles;
   std::size_t closed = 0;

@@ -43,6 +43,9 @@ std::vector<CrackFacePair> crack_face_pairs(const Simulation& sim, const std::ve
 // accelerations ext_ax, ext_ay. Returns the number of closed pairs.
 std::size_t crack_face_contact(Simulation& sim);
 
+// The pair's contact force f above, >= 0 (on j along n, on i against it).
+double crack_face_force(const Simulation& sim, const CrackFacePair& f);
+
 // The energy the closed face pairs store, sum of k (g0 - g)^2 / 2 [J/m].
 double crack_face_energy(const Simulation& sim);
 
