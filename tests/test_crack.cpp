@@ -9,6 +9,7 @@
 #include "solver/diagnostics/stress_intensity.hpp"
 #include "solver/geometry/crack.hpp"
 #include "solver/job/job.hpp"
+#include "solver/physics/crack_growth.hpp"
 #include "tests/support/job_issues.hpp"
 
 namespace gearsph {
@@ -116,6 +117,38 @@ TEST(StressIntensity, InteractionIntegralRecoversTheWilliamsFieldsFactors) {
   EXPECT_GT(k.points, 1000u);
 }
 
+// Erdogan & Sih's kink against its closed forms: none in pure mode I,
+// acos(1/3) = 70.53 degrees in pure mode II, turning against K_II's sign;
+// and, for mixed modes, the root of K_I sin + K_II (3 cos - 1) = 0 at which a
+// scan of the near-tip hoop stress finds its greatest value.
+TEST(CrackGrowth, MaximumTangentialStressKinkMatchesErdoganAndSih) {
+  const double deg = 180.0 / std::numbers::pi;
+  EXPECT_EQ(physics::max_tangential_stress_kink(1e7, 0.0), 0.0);
+  const double mode_ii = std::acos(1.0 / 3.0) * deg;  // 70.5288 degrees
+  EXPECT_NEAR(physics::max_tangential_stress_kink(0.0, 1e7) * deg, -mode_ii, 1e-9);
+  EXPECT_NEAR(physics::max_tangential_stress_kink(0.0, -1e7) * deg, mode_ii, 1e-9);
+  EXPECT_NEAR(mode_ii, 70.53, 0.005);
+  for (const double ratio : {-3.0, -1.0, -0.3, 0.1, 0.5, 1.0, 4.0}) {
+    const double K_I = 2e7, K_II = ratio * K_I;
+    const double theta = physics::max_tangential_stress_kink(K_I, K_II);
+    EXPECT_NEAR(K_I * std::sin(theta) + K_II * (3.0 * std::cos(theta) - 1.0), 0.0, 1e-8 * K_I);
+    double best = -1e300, at = 0.0;
+    for (int k = -18000; k <= 18000; ++k) {
+      const double t = k * 1e-4;  // -1.8 to 1.8 rad: past +/- 70.53 degrees either way
+      const double s = physics::near_tip_hoop_stress(K_I, K_II, t);
+      if (s > best) best = s, at = t;
+    }
+    EXPECT_NEAR(theta, at, 2e-4) << "K_II / K_I = " << ratio;
+    EXPECT_LT(theta * ratio, 0.0) << "turns against K_II";
+  }
+}
+
+TEST(CrackGrowth, GrownTipTurnsTheAdvanceByTheKink) {
+  const geometry::Point q = physics::grown_tip({1.0, 2.0}, {0.0, 1.0}, std::numbers::pi / 2, 0.5);
+  EXPECT_NEAR(q.x, 0.5, 1e-15);  // advancing along +y, turned left: along -x
+  EXPECT_NEAR(q.y, 2.0, 1e-15);
+}
+
 TEST(CrackedPlate, RefusesWhatItCannotModelAtTheField) {
   using testing_support::issues_of;
   auto plate = [](const nlohmann::json& crack) {
@@ -146,6 +179,18 @@ TEST(CrackedPlate, RefusesWhatItCannotModelAtTheField) {
   const auto fitted_issues = issues_of(fitted);
   ASSERT_EQ(fitted_issues.size(), 1u);
   EXPECT_EQ(fitted_issues[0].pointer, "/discretization/particles");
+  // Growth: an increment shorter than 2 spacings or longer than the crack.
+  for (const double increment : {0.0001, 0.02}) {
+    nlohmann::json step = plate({{"length_m", 0.012}, {"increment_m", increment}});
+    step["discretization"] = {{"spacing_m", 0.0006}};
+    const auto step_issues = issues_of(step);
+    ASSERT_EQ(step_issues.size(), 1u) << increment;
+    EXPECT_EQ(step_issues[0].pointer, "/scene/crack/increment_m");
+    EXPECT_NE(step_issues[0].message.find("at least 2 spacings"), std::string::npos);
+  }
+  const auto negative = issues_of(plate({{"max_increments", -1}}));
+  ASSERT_EQ(negative.size(), 1u);
+  EXPECT_EQ(negative[0].pointer, "/scene/crack/max_increments");
 }
 
 }  // namespace

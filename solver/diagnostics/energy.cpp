@@ -1,6 +1,7 @@
 #include "solver/diagnostics/energy.hpp"
 
 #include "solver/core/simulation.hpp"
+#include "solver/physics/crack_face_contact.hpp"
 #include "solver/physics/elastic_law.hpp"
 
 namespace gearsph::diagnostics {
@@ -40,7 +41,7 @@ EnergyState energy(const Simulation& sim) {
     e.kinetic += kinetic;
     e.elastic += elastic;
   }
-  e.contact = sim.contact_state.stored_energy;
+  e.contact = sim.contact_state.stored_energy + physics::crack_face_energy(sim);
   e.dissipated = sim.energy.dissipated;
   e.drive_work = sim.energy.drive_work;
   e.external_work = sim.energy.external_work;

@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 #include "solver/core/simulation.hpp"
+#include "solver/physics/crack_face_contact.hpp"
 
 namespace gearsph::diagnostics {
 
@@ -42,6 +44,13 @@ double weight_slope(double r, const DomainRing& ring) {
   if (r <= ring.r_in || r >= ring.r_out) return 0.0;
   const double width = ring.r_out - ring.r_in;
   return -0.5 * kPi / width * std::sin(kPi * (r - ring.r_in) / width);
+}
+
+// The weight itself: 1 inside the ring, the cosine taper on it, 0 beyond.
+double weight(double r, const DomainRing& ring) {
+  if (r <= ring.r_in) return 1.0;
+  if (r >= ring.r_out) return 0.0;
+  return 0.5 * (1.0 + std::cos(kPi * (r - ring.r_in) / (ring.r_out - ring.r_in)));
 }
 
 // A point's stress and displacement gradient turned into the tip's frame
@@ -171,7 +180,31 @@ StressIntensity interaction_integral(const Simulation& sim, int body, const Crac
                       h[4 * i + 3]});
   }
   const Material& m = sim.bodies[static_cast<std::size_t>(body)].material;
-  return interaction_integral(points, tip, ring, m.E, m.nu);
+  StressIntensity out = interaction_integral(points, tip, ring, m.E, m.nu);
+  // Closed faces carry the contact's traction t, which the domain form
+  // leaves out: their share of the contour that the domain replaces,
+  // I = I_A - int_faces t_i u^aux_i,1 q ds (the auxiliary field's faces are
+  // free), with t ds the contact force on a face particle.
+  const double c = tip.direction.x, s = tip.direction.y;
+  const double e_prime = m.E / (1.0 - m.nu * m.nu);
+  for (const physics::CrackFacePair& f : sim.reference.faces) {
+    const double force = physics::crack_face_force(sim, f);
+    if (force == 0.0) continue;
+    for (const auto& [k, sign] : {std::pair{f.i, -1.0}, std::pair{f.j, 1.0}}) {
+      if (p.body[k] != body) continue;
+      const double dx = p.x0[k] - tip.tip.x, dy = p.y0[k] - tip.tip.y;
+      const double q = weight(std::hypot(dx, dy), ring);
+      if (q == 0.0) continue;
+      const double x1 = c * dx + s * dy, x2 = -s * dx + c * dy;
+      const double f1 = sign * force * (c * f.nx + s * f.ny);
+      const double f2 = sign * force * (-s * f.nx + c * f.ny);
+      const WilliamsField one = williams_field(1.0, 0.0, x1, x2, m.E, m.nu);
+      const WilliamsField two = williams_field(0.0, 1.0, x1, x2, m.E, m.nu);
+      out.K_I -= 0.5 * e_prime * q * (f1 * one.h11 + f2 * one.h21);
+      out.K_II -= 0.5 * e_prime * q * (f1 * two.h11 + f2 * two.h21);
+    }
+  }
+  return out;
 }
 
 }  // namespace gearsph::diagnostics

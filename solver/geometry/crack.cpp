@@ -32,6 +32,10 @@ bool crosses(Point a, Point b, Point c, Point d, bool open_start) {
 }  // namespace
 
 bool crack_cuts(const Crack& crack, Point a, Point b) {
+  return crack_segment_cut(crack, a, b) >= 0;
+}
+
+int crack_segment_cut(const Crack& crack, Point a, Point b) {
   const std::vector<Point>& p = crack.path;
   for (std::size_t k = 0; k + 1 < p.size(); ++k) {
     // A quick reject on the bounding boxes: most pairs are far from the crack.
@@ -41,9 +45,9 @@ bool crack_cuts(const Crack& crack, Point a, Point b) {
         std::min(a.y, b.y) > std::max(p[k].y, p[k + 1].y)) {
       continue;
     }
-    if (crosses(a, b, p[k], p[k + 1], k == 0 && crack.front_is_tip)) return true;
+    if (crosses(a, b, p[k], p[k + 1], k == 0 && crack.front_is_tip)) return static_cast<int>(k);
   }
-  return false;
+  return -1;
 }
 
 bool any_crack_cuts(const std::vector<Crack>& cracks, Point a, Point b) {

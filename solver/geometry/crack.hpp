@@ -24,6 +24,9 @@ struct Crack {
 // of one of its segments, and the crossing point lies on that segment, short
 // of a tip (a pair that passes exactly through a tip still sees across it).
 bool crack_cuts(const Crack& crack, Point a, Point b);
+// The same, with the index of the first segment it crosses (path[k] to
+// path[k + 1]), or -1.
+int crack_segment_cut(const Crack& crack, Point a, Point b);
 bool any_crack_cuts(const std::vector<Crack>& cracks, Point a, Point b);
 
 }  // namespace gearsph::geometry

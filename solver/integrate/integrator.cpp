@@ -8,6 +8,7 @@
 #include "solver/core/simulation.hpp"
 #include "solver/integrate/step_passes.hpp"
 #include "solver/physics/contact.hpp"
+#include "solver/physics/crack_face_contact.hpp"
 #include "solver/physics/external_loads.hpp"
 #include "solver/physics/momentum.hpp"
 #include "solver/physics/stress_rate.hpp"
@@ -66,6 +67,7 @@ void first_forces(Simulation& sim) {
         s += physics::external_accelerations(p, lo, hi, ramp, damping, 0.0, false);
       });
   if (penalty_contact(sim)) physics::contact_forces(sim, 0.0);  // adds to ext
+  if (total_lagrangian(sim)) physics::crack_face_contact(sim);  // adds to ext
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "solver/integrate/motion.hpp"
 #include "solver/integrate/step_passes.hpp"
 #include "solver/physics/contact.hpp"
+#include "solver/physics/crack_face_contact.hpp"
 #include "solver/physics/external_loads.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 
@@ -82,6 +83,8 @@ void total_lagrangian_step(Simulation& sim, bool apart) {
                                                   contact && !spread);
     });
   };
+  const bool faces = !sim.reference.faces.empty();
+  auto crack_faces = [&](int, int, S&) { physics::crack_face_contact(sim); };
   auto contact_spread = [&](int c, int, S&) {
     range(m_rows, c, [&](auto lo, auto hi) { physics::add_contact_accelerations(sim, lo, hi); });
   };
@@ -94,6 +97,9 @@ void total_lagrangian_step(Simulation& sim, bool apart) {
   // over one chunk's own rows continue without (Sync::Continues).
   const Sync after_contact = contact ? Sync::Continues : Sync::Barrier;
   const Sync after_spin = torque ? Sync::Barrier : Sync::Continues;
+  // The crack's faces add to both ends of pairs of any chunk, after every
+  // chunk's external accelerations are set.
+  const Sync after_external = faces ? Sync::Barrier : Sync::Continues;
   const Pass<S> step[] = {
       {"opening spin", Runs::OnCallingThread, nullptr, spin, Sync::Barrier, torque},
       {"driven rotations", Runs::OnCallingThread, nullptr, rotations, Sync::Barrier, true},
@@ -111,7 +117,8 @@ void total_lagrangian_step(Simulation& sim, bool apart) {
       {"contact pairs", Runs::OnEveryThread, nullptr, contact_pairs, Sync::Barrier, contact},
       {"momentum sums", Runs::OverChunks, m_rows, momentum, after_contact, true},
       {"accelerations", Runs::OverChunks, m_rows, accelerations, Sync::Barrier, true},
-      {"external forces", Runs::OverChunks, m_rows, external, Sync::Continues, true},
+      {"external forces", Runs::OverChunks, m_rows, external, after_external, true},
+      {"crack faces", Runs::OnOneThread, nullptr, crack_faces, Sync::Barrier, faces},
       {"contact spread", Runs::OverChunks, m_rows, contact_spread, Sync::Continues, spread},
       {"closing spin", Runs::OnOneThread, nullptr, spin, Sync::Barrier, torque},
       {"closing kick", Runs::OverChunks, m_rows, closing_kick, after_spin, true},

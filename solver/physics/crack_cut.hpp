@@ -24,11 +24,20 @@
 
 namespace gearsph::physics {
 
+// A pair the crack cut, with the unit normal of the crack's segment it
+// crosses, turned from i's side towards j's.
+struct CutPair {
+  std::uint32_t i = 0, j = 0;
+  double nx = 0.0, ny = 0.0;
+};
+
 // Removes from the pair list (rows, js: row i holds the partners j of i, a
 // CSR list) every pair of one body whose reference segment crosses one of
-// that body's cracks. Returns the number of pairs removed.
+// that body's cracks. Returns the number of pairs removed; with `cut_out`,
+// appends them there.
 std::size_t cut_pairs_across_cracks(const Particles& p, const std::vector<geometry::Crack>& cracks,
                                     std::vector<std::uint32_t>& rows,
-                                    std::vector<std::uint32_t>& js);
+                                    std::vector<std::uint32_t>& js,
+                                    std::vector<CutPair>* cut_out = nullptr);
 
 }  // namespace gearsph::physics

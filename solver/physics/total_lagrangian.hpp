@@ -16,6 +16,7 @@
 #include "solver/core/cache_aligned.hpp"
 #include "solver/kernels/kernel.hpp"
 #include "solver/neighbours/row_chunks.hpp"
+#include "solver/physics/crack_face_contact.hpp"
 #include "solver/physics/kernel_correction.hpp"
 
 namespace gearsph {
@@ -94,6 +95,9 @@ struct ReferencePairs {
     long particle = -1;
   };
   std::vector<ChunkPeak> chunk_peaks;
+  // The pairs a crack cut whose particles face each other across it, for
+  // the faces' contact (physics/crack_face_contact.hpp); empty without cracks.
+  std::vector<physics::CrackFacePair> faces;
   // Lame constants per body, so that the step divides nothing per particle.
   std::vector<double> lambda_body, mu_body;
   // What the pairs and gradients were built for. The stable-step estimate

@@ -89,7 +89,9 @@ void build_pairs(Simulation& sim, const ReferencePairs::Basis& basis) {
       rp.j = std::move(list.j);
     }
     if (graded) keep_pairs_within(p, rp.hp, K::shape_type::support, rp.rows, rp.j);
-    cut_pairs_across_cracks(p, sim.cracks, rp.rows, rp.j);  // its faces are free surfaces
+    std::vector<CutPair> cut;
+    cut_pairs_across_cracks(p, sim.cracks, rp.rows, rp.j, &cut);  // its faces are free surfaces
+    rp.faces = crack_face_pairs(sim, cut);                        // until they close
     auto h_of = [&](std::uint32_t i, std::uint32_t j) { return 0.5 * (rp.hp[i] + rp.hp[j]); };
     const std::size_t n = p.n, m = rp.pairs();
     rp.w0.assign(basis.keep_w ? m : 0, 0.0);

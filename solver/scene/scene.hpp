@@ -50,6 +50,12 @@ struct Scene {
   std::vector<Outline> outlines;
   // What was modelled, for the summary (counts, dimensions, notes).
   nlohmann::json description = nlohmann::json::object();
+  // Quasi-static stages (a growing crack, docs/cracks.md): called when the
+  // run's steps are done, on the state they reached. It may change the
+  // model (a longer crack; it then clears sim.reference, so that the run's
+  // set-up builds the pairs again on the same particles, displaced as they
+  // are) and returns how long to run on [s]; 0 ends the run.
+  std::function<double(Simulation&)> next_stage;
 };
 
 // A job that is valid against the schema but cannot be built as asked
