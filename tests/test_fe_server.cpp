@@ -6,6 +6,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <memory>
 #include <thread>
 
 #include "fe/external_program.hpp"
@@ -23,6 +24,20 @@ json static_gear_job(double end_s) {
             {"pinion", {{"omega_rad_s", 0}}},
             {"rack", {{"velocity_m_s", 0}, {"load_N", 1000}}}}},
           {"time", {{"end_s", end_s}}}};
+}
+
+// A server whose gmsh is the stand-in shell script `body` (ccx: /bin/true),
+// the environment put back once the server runs.
+std::unique_ptr<ServerProcess> server_with_stand_in_gmsh(const fs::path& script,
+                                                         const std::string& body) {
+  std::ofstream(script) << "#!/bin/sh\n" << body;
+  fs::permissions(script, fs::perms::owner_all);
+  ::setenv("GEARSPH_GMSH", script.c_str(), 1);
+  ::setenv("GEARSPH_CCX", "/bin/true", 1);
+  auto server = std::make_unique<ServerProcess>(std::vector<std::string>{"--threads-per-job", "1"});
+  ::unsetenv("GEARSPH_GMSH");
+  ::unsetenv("GEARSPH_CCX");
+  return server;
 }
 
 TEST(ServerFe, JobsAskingForTheCheckWithoutTheToolsAnswer501) {
@@ -59,23 +74,17 @@ TEST(ServerFe, DismissingAJobStopsAHungTool) {
   TempDir dir;
   const fs::path pid_file = dir.path() / "gmsh.pid";
   const fs::path script = dir.path() / "gmsh";
-  std::ofstream(script) << "#!/bin/sh\necho $$ > " << pid_file.string() << ".tmp\nmv "
-                        << pid_file.string() << ".tmp " << pid_file.string()
-                        << "\nexec sleep 300\n";
-  fs::permissions(script, fs::perms::owner_all);
-  ::setenv("GEARSPH_GMSH", script.c_str(), 1);
-  ::setenv("GEARSPH_CCX", "/bin/true", 1);
-  ServerProcess server({"--threads-per-job", "1"});
-  ::unsetenv("GEARSPH_GMSH");
-  ::unsetenv("GEARSPH_CCX");
-  auto c = server.client();
+  const auto server = server_with_stand_in_gmsh(
+      script, "echo $$ > " + pid_file.string() + ".tmp\nmv " + pid_file.string() + ".tmp " +
+                  pid_file.string() + "\nexec sleep 300\n");
+  auto c = server->client();
   const std::string id = submit(c, static_gear_job(2e-4));
   ASSERT_FALSE(id.empty());
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(300);
   while (!fs::exists(pid_file) && std::chrono::steady_clock::now() < until) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
-  ASSERT_TRUE(fs::exists(pid_file)) << server.log();
+  ASSERT_TRUE(fs::exists(pid_file)) << server->log();
   const pid_t tool = std::stoi(slurp(pid_file));
   ASSERT_EQ(::kill(tool, 0), 0);
   EXPECT_EQ(c.request("DELETE", "/jobs/" + id).status, 200u);
@@ -101,16 +110,10 @@ TEST(ServerFe, TheFeStageIsCountedAndItsFailureShown) {
   const fs::path started = dir.path() / "gmsh.started";
   const fs::path go = dir.path() / "gmsh.go";
   const fs::path script = dir.path() / "gmsh";
-  std::ofstream(script) << "#!/bin/sh\ntouch " << started.string() << "\nwhile [ ! -f "
-                        << go.string() << " ]; do sleep 0.05; done\n"
-                        << "echo 'meshing failed' >&2\nexit 1\n";
-  fs::permissions(script, fs::perms::owner_all);
-  ::setenv("GEARSPH_GMSH", script.c_str(), 1);
-  ::setenv("GEARSPH_CCX", "/bin/true", 1);
-  ServerProcess server({"--threads-per-job", "1"});
-  ::unsetenv("GEARSPH_GMSH");
-  ::unsetenv("GEARSPH_CCX");
-  auto c = server.client();
+  const auto server = server_with_stand_in_gmsh(
+      script, "touch " + started.string() + "\nwhile [ ! -f " + go.string() +
+                  " ]; do sleep 0.05; done\necho 'meshing failed' >&2\nexit 1\n");
+  auto c = server->client();
 
   // The preview's estimate counts the stage.
   const json preview = c.post_json("/preview", static_gear_job(2e-4).dump()).json();
@@ -149,7 +152,7 @@ TEST(ServerFe, TheFeStageIsCountedAndItsFailureShown) {
   while (!fs::exists(started) && std::chrono::steady_clock::now() < until) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  ASSERT_TRUE(fs::exists(started)) << server.log();
+  ASSERT_TRUE(fs::exists(started)) << server->log();
   const double sph_wall = fe.at("stage_wall_s").at("sph").get<double>();
   const json later = wait_for(c, id, [&](const json& s) {
     const json& fe_part = s.at("stage_wall_s").at("fe_check");

@@ -154,6 +154,10 @@ int cmd_accuracy_map(Args& args) {
       row["sph_wall_s"] = sph.run.wall_s;
       row["particles"] = sph.run.summary.value("particles", 0);
       if (sph.run.status != "completed") throw std::runtime_error("SPH run " + sph.run.status);
+      // Above one, the rack tooth is wedged (rack_pinion_analysis.cpp): not
+      // the FE's single loaded flank.
+      row["load_carried_by_tooth0"] =
+          sph.run.summary["analysis"]["static_check"].value("load_carried_by_tooth0", 0.0);
       fe::FeCheckOptions o = fe_options;
       fe::model_the_sph_run(sph.run.summary, (dir / "sph" / "summary.json").string(), o);
       const auto t0 = std::chrono::steady_clock::now();
