@@ -723,12 +723,19 @@ TEST(ServerSubmitCli, ServerUrls) {
 // Every option a command reads is in its --help.
 TEST(CliHelp, ListsEveryOptionOfEveryCommand) {
   const std::map<std::string, std::vector<std::string>> commands_of = {
-      {"cmd_run.cpp", {"run"}},           {"cmd_validate.cpp", {"validate"}},
-      {"cmd_study.cpp", {"study"}},       {"cmd_bench.cpp", {"bench"}},
-      {"cmd_geometry.cpp", {"geometry"}}, {"cmd_render.cpp", {"render", "plot"}},
-      {"cmd_serve.cpp", {"serve"}},       {"cmd_submit.cpp", {"submit"}},
-      {"cmd_worker.cpp", {"worker"}},     {"cmd_fe.cpp", {"fe"}},
-      {"cmd_rate.cpp", {"rate"}},         {"cmd_speed_sweep.cpp", {"study"}}};
+      {"cmd_run.cpp", {"run"}},
+      {"cmd_validate.cpp", {"validate"}},
+      {"cmd_study.cpp", {"study"}},
+      {"cmd_bench.cpp", {"bench"}},
+      {"cmd_geometry.cpp", {"geometry"}},
+      {"cmd_render.cpp", {"render", "plot"}},
+      {"cmd_serve.cpp", {"serve"}},
+      {"cmd_submit.cpp", {"submit"}},
+      {"cmd_worker.cpp", {"worker"}},
+      {"cmd_fe.cpp", {"fe"}},
+      {"cmd_rate.cpp", {"rate"}},
+      {"cmd_speed_sweep.cpp", {"study"}},
+      {"cmd_fe_accuracy_map.cpp", {"validate"}}};
   const std::regex read_option(
       R"re((?:option|flag|integer)\("([a-z0-9-]+)"|args, "([a-z0-9-]+)")re");
   int files = 0;
