@@ -66,6 +66,9 @@ struct ServerConfig {
   // bound address (each with the server's port): "name" (any port),
   // "name:port", or "*" (any Host: a proxy in front checks it).
   std::vector<std::string> allowed_hosts;
+  // Proxies (IP addresses) whose X-Forwarded-For names the client, for
+  // failed logins and the queue quota (client_identity.hpp); none by default.
+  std::vector<std::string> trusted_proxies;
   std::filesystem::path web_root;  // the dashboard; empty: the compiled-in source path
   int max_attempts = 3;            // runs interrupted by a crash this often are failed
   int io_threads = 2;              // threads of the io_context (network only)

@@ -8,6 +8,7 @@
 #include <boost/asio/post.hpp>
 #include <boost/asio/write.hpp>
 
+#include "server/client_identity.hpp"
 #include "server/problem.hpp"
 
 namespace gearsph::server {
@@ -178,7 +179,17 @@ void HttpSession::dispatch() {
   {
     beast::error_code ec;
     const auto peer = stream_.socket().remote_endpoint(ec);
-    if (!ec) req->client = peer.address().to_string();
+    if (!ec) {
+      // Every X-Forwarded-For line, in order (RFC 9110, 5.3: one list).
+      std::string forwarded;
+      const auto lines = req->msg.equal_range("X-Forwarded-For");
+      for (auto it = lines.first; it != lines.second; ++it) {
+        if (!forwarded.empty()) forwarded += ',';
+        forwarded += std::string(it->value());
+      }
+      req->client =
+          forwarded_client(peer.address().to_string(), forwarded, services_.config.trusted_proxies);
+    }
   }
   Router::Match match = router_.match(*req);
   const Lane lane = match.lane();

@@ -112,9 +112,20 @@ struct Idempotency {
 };
 
 struct SubmitResult {
-  enum class Kind { created, existing, conflict };
+  // queue_full, client_queue_full: refused by the QueueQuota; nothing stored.
+  enum class Kind { created, existing, conflict, queue_full, client_queue_full };
   Kind kind = Kind::created;
-  std::string id;  // of the new or existing job / study
+  std::string id;           // of the new or existing job / study
+  std::int64_t queued = 0;  // queue_full / client_queue_full: the queued jobs counted
+};
+
+// The queue quota (Limits::max_queued, max_queued_per_client), checked in
+// the transaction that stores the jobs, so that concurrent submissions
+// cannot overfill the queue between a count and an insert. 0: no limit.
+struct QueueQuota {
+  std::int64_t max_queued = 0;
+  std::int64_t max_queued_per_client = 0;
+  std::string client;  // whose share is counted (NewJob::client); "": none
 };
 
 struct JobQuery {
@@ -196,11 +207,22 @@ class JobStore {
   virtual ~JobStore() = default;
 
   // Stores an accepted job; with an idempotency key already used, answers
-  // `existing` (same request) or `conflict` (another request).
-  virtual SubmitResult submit(const NewJob& job, const std::optional<Idempotency>& idem) = 0;
+  // `existing` (same request) or `conflict` (another request); beyond the
+  // quota, `queue_full` or `client_queue_full` and stores nothing.
+  virtual SubmitResult submit(const NewJob& job, const std::optional<Idempotency>& idem,
+                              const QueueQuota& quota) = 0;
   // A study and all its jobs, in one transaction.
   virtual SubmitResult submit_study(const NewStudy& study, const std::vector<NewJob>& jobs,
-                                    const std::optional<Idempotency>& idem) = 0;
+                                    const std::optional<Idempotency>& idem,
+                                    const QueueQuota& quota) = 0;
+  // Without a quota.
+  SubmitResult submit(const NewJob& job, const std::optional<Idempotency>& idem) {
+    return submit(job, idem, QueueQuota{});
+  }
+  SubmitResult submit_study(const NewStudy& study, const std::vector<NewJob>& jobs,
+                            const std::optional<Idempotency>& idem) {
+    return submit_study(study, jobs, idem, QueueQuota{});
+  }
 
   virtual std::optional<JobRecord> job(const std::string& id) = 0;
   virtual JobPage jobs(const JobQuery& query) = 0;
@@ -288,6 +310,17 @@ class JobStore {
   // since each was seen.
   virtual void worker_seen(const std::string& worker, int running) = 0;
   virtual std::vector<WorkerSeen> workers_seen(double seconds) = 0;
+
+  // The dashboard's sessions (sessions.hpp), by the SHA-256 of their id:
+  // a new one ending `lifetime_s` from now, the ended ones and, beyond
+  // `max_sessions`, those ending first removed (how many open ones went);
+  // whether one is open now; closing one (false if there was none); how
+  // many are open.
+  virtual std::int64_t open_session(const std::string& id_hash, double lifetime_s,
+                                    std::int64_t max_sessions) = 0;
+  virtual bool session_open(const std::string& id_hash) = 0;
+  virtual bool close_session(const std::string& id_hash) = 0;
+  virtual std::int64_t open_sessions() = 0;
   // How many ended jobs (successful or failed) ran at most each of `bounds`
   // seconds (cumulative, as a Prometheus histogram), their count and the
   // sum of their wall times.

@@ -145,20 +145,29 @@ class SqlJobStore : public JobStore {
     migrate();
   }
 
-  SubmitResult submit(const NewJob& job, const std::optional<Idempotency>& idem) override {
+  using JobStore::submit;
+  using JobStore::submit_study;
+
+  SubmitResult submit(const NewJob& job, const std::optional<Idempotency>& idem,
+                      const QueueQuota& quota) override {
     auto db = db_->connect();
     sql::Transaction tx(*db);
+    lock_for_quota(*db, quota);
     if (auto seen = claim_key(*db, idem, job.id)) return *seen;
+    if (auto over = over_quota(*db, quota, 1)) return *over;
     insert_job(*db, job);
     tx.commit();
     return {SubmitResult::Kind::created, job.id};
   }
 
   SubmitResult submit_study(const NewStudy& study, const std::vector<NewJob>& jobs,
-                            const std::optional<Idempotency>& idem) override {
+                            const std::optional<Idempotency>& idem,
+                            const QueueQuota& quota) override {
     auto db = db_->connect();
     sql::Transaction tx(*db);
+    lock_for_quota(*db, quota);
     if (auto seen = claim_key(*db, idem, study.id)) return *seen;
+    if (auto over = over_quota(*db, quota, static_cast<std::int64_t>(jobs.size()))) return *over;
     db->execute("INSERT INTO studies (id, name, spec_json, created) VALUES (?, ?, ?, " + now_ + ")",
                 {study.id, study.name, study.spec_json});
     for (const NewJob& j : jobs) insert_job(*db, j);
@@ -230,6 +239,43 @@ class SqlJobStore : public JobStore {
   std::int64_t queued_from(const std::string& client) override {
     return db_->connect()
         ->query("SELECT COUNT(*) FROM jobs WHERE status = 'accepted' AND client = ?", {client})
+        .front()
+        .int64(0);
+  }
+
+  std::int64_t open_session(const std::string& id_hash, double lifetime_s,
+                            std::int64_t max_sessions) override {
+    auto db = db_->connect();
+    sql::Transaction tx(*db);
+    db->execute("DELETE FROM sessions WHERE expires <= " + d_.lease_clock);
+    const std::int64_t open = db->query("SELECT COUNT(*) FROM sessions").front().int64(0);
+    std::int64_t evicted = 0;
+    if (open >= max_sessions) {
+      evicted = db->execute(
+          "DELETE FROM sessions WHERE id_hash IN "
+          "(SELECT id_hash FROM sessions ORDER BY expires LIMIT ?)",
+          {open - max_sessions + 1});
+    }
+    db->execute("INSERT INTO sessions (id_hash, expires) VALUES (?, " + d_.lease_in + ")",
+                {id_hash, lifetime_s});
+    tx.commit();
+    return evicted;
+  }
+
+  bool session_open(const std::string& id_hash) override {
+    return !db_->connect()
+                ->query("SELECT 1 FROM sessions WHERE id_hash = ? AND expires > " + d_.lease_clock,
+                        {id_hash})
+                .empty();
+  }
+
+  bool close_session(const std::string& id_hash) override {
+    return db_->connect()->execute("DELETE FROM sessions WHERE id_hash = ?", {id_hash}) > 0;
+  }
+
+  std::int64_t open_sessions() override {
+    return db_->connect()
+        ->query("SELECT COUNT(*) FROM sessions WHERE expires > " + d_.lease_clock)
         .front()
         .int64(0);
   }
@@ -591,6 +637,37 @@ class SqlJobStore : public JobStore {
   // Records the key for `target`, or answers with what it was used for
   // before. Inside the submission's transaction: two nodes given the same
   // key at once agree on one job (PostgreSQL waits for the other insert).
+  // Submissions under a quota one at a time: SQLite's BEGIN IMMEDIATE does
+  // it already; PostgreSQL's READ COMMITTED would let two count the same
+  // queue and both insert (Dialect::submit_lock).
+  void lock_for_quota(sql::Connection& db, const QueueQuota& q) {
+    if (d_.submit_lock.empty()) return;
+    if (q.max_queued <= 0 && (q.max_queued_per_client <= 0 || q.client.empty())) return;
+    db.query(d_.submit_lock);
+  }
+
+  // Counted in the transaction that inserts: the queue as it is now.
+  std::optional<SubmitResult> over_quota(sql::Connection& db, const QueueQuota& q,
+                                         std::int64_t adding) {
+    if (q.max_queued > 0) {
+      const std::int64_t queued =
+          db.query("SELECT COUNT(*) FROM jobs WHERE status = 'accepted'").front().int64(0);
+      if (queued + adding > q.max_queued) {
+        return SubmitResult{SubmitResult::Kind::queue_full, "", queued};
+      }
+    }
+    if (q.max_queued_per_client > 0 && !q.client.empty()) {
+      const std::int64_t mine =
+          db.query("SELECT COUNT(*) FROM jobs WHERE status = 'accepted' AND client = ?", {q.client})
+              .front()
+              .int64(0);
+      if (mine + adding > q.max_queued_per_client) {
+        return SubmitResult{SubmitResult::Kind::client_queue_full, "", mine};
+      }
+    }
+    return std::nullopt;
+  }
+
   std::optional<SubmitResult> claim_key(sql::Connection& db, const std::optional<Idempotency>& idem,
                                         const std::string& target) {
     if (!idem) return std::nullopt;

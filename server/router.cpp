@@ -12,6 +12,7 @@
 #include "server/routes.hpp"
 #include "server/routes_preview.hpp"
 #include "server/routes_rating.hpp"
+#include "server/sha256.hpp"
 #include "server/static_files.hpp"
 
 namespace gearsph::server {
@@ -53,9 +54,10 @@ const std::vector<Route>& route_table() {
       {verb::get, "/studies/{id}", routes::study, slow},  // reads every job's summary
       {verb::post, "/preview", routes::preview, slow},    // builds the scene
       {verb::post, "/rating", routes::rating},            // ISO 6336, microseconds
-      {verb::get, "/login", routes::login_state},
-      {verb::post, "/login", routes::login},  // checks the token itself
-      {verb::delete_, "/login", routes::logout},
+      // Sessions are in the job store.
+      {verb::get, "/login", routes::login_state, store},
+      {verb::post, "/login", routes::login, store},  // checks the token itself
+      {verb::delete_, "/login", routes::logout, store},
   };
   return table;
 }
@@ -269,6 +271,17 @@ bool carries_credential(const http::request_header<>& header, std::string_view t
   const Credential c = presented_token(header);
   if (c.from == Credential::From::cookie) return sessions.valid(c.token);
   return c.from != Credential::From::nothing && token_matches(c.token, token);
+}
+
+std::string credential_identity(const http::request_header<>& header, std::string_view token,
+                                const Sessions& sessions) {
+  if (token.empty()) return {};
+  const Credential c = presented_token(header);
+  if (c.from == Credential::From::cookie) {
+    return sessions.valid(c.token) ? "session " + sha256_hex(c.token).substr(0, 16) : "";
+  }
+  if (c.from == Credential::From::nothing || !token_matches(c.token, token)) return {};
+  return "token " + sha256_hex(c.token).substr(0, 16);
 }
 
 namespace {

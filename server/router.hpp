@@ -30,6 +30,13 @@ std::optional<std::string> session_cookie(const http::request_header<>& header);
 // ?access_token=) or the cookie of one of `sessions`.
 bool carries_credential(const http::request_header<>& header, std::string_view token,
                         const Sessions& sessions);
+// Who the request's credential says it is, for the queue quota: "session
+// <hash>" for a valid session cookie (each login its own), "token <hash>"
+// for the bearer token (every holder of it the same); "" without `token`
+// (no --token-file) or without a valid credential. The hash is the first 16
+// hex digits of the secret's SHA-256: the store keeps no usable secret.
+std::string credential_identity(const http::request_header<>& header, std::string_view token,
+                                const Sessions& sessions);
 
 // Where a handler runs. The I/O threads only move bytes and answer from
 // memory; anything that reads the job store or the disk waits elsewhere,

@@ -268,9 +268,11 @@ Response execute(Services& s, Request& req) {
   if (auto* refusal = std::get_if<Refusal>(&admitted))
     return refusal_response(*refusal, req, prefix);
 
-  std::get<NewJob>(admitted).client = req.client;
+  const QueueQuota quota = queue_quota(s, req);
+  std::get<NewJob>(admitted).client = quota.client;
   const SubmitResult r =
-      s.store.submit(std::get<NewJob>(admitted), std::get<std::optional<Idempotency>>(idem));
+      s.store.submit(std::get<NewJob>(admitted), std::get<std::optional<Idempotency>>(idem), quota);
+  if (auto full = queue_refusal(s, req, r, 1)) return std::move(*full);
   const std::string location = "/jobs/" + r.id;
   if (r.kind == SubmitResult::Kind::conflict) return idempotency_conflict(req, location);
   const auto record = s.store.job(r.id);

@@ -148,6 +148,7 @@ Response create_study(Services& s, Request& req) {
   if (auto full = queue_refusal(s, req, static_cast<std::int64_t>(points.size()))) {
     return std::move(*full);
   }
+  const QueueQuota quota = queue_quota(s, req);
   NewStudy study;
   study.id = new_id();
   study.name = !spec.name.empty() ? spec.name
@@ -217,12 +218,15 @@ Response create_study(Services& s, Request& req) {
     job.study_id = study.id;
     job.study_index = static_cast<std::int64_t>(i);
     job.parameters_json = point.parameters.dump();
-    job.client = req.client;
+    job.client = quota.client;
     jobs.push_back(std::move(job));
   }
 
   const SubmitResult r =
-      s.store.submit_study(study, jobs, std::get<std::optional<Idempotency>>(idem));
+      s.store.submit_study(study, jobs, std::get<std::optional<Idempotency>>(idem), quota);
+  if (auto full = queue_refusal(s, req, r, static_cast<std::int64_t>(jobs.size()))) {
+    return std::move(*full);
+  }
   const std::string location = "/studies/" + r.id;
   if (r.kind == SubmitResult::Kind::conflict) return idempotency_conflict(req, location);
   if (r.kind == SubmitResult::Kind::created) {

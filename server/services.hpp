@@ -51,7 +51,7 @@ struct Services {
   std::atomic<bool> stopping{false};    // shutting down: no more keep-alive
   std::atomic<unsigned short> port{0};  // the port listened on (known once bound)
   // The dashboard's sessions and the failed logins by address (sessions.hpp).
-  Sessions sessions{kSessionLifetime, kMaxSessions};
+  Sessions sessions{store, config.token, kSessionLifetime, kMaxSessions};
   LoginThrottle login_throttle{kLoginFailuresPerMinute, std::chrono::seconds(60)};
 
   // This machine's speed, measured once, by the first caller (a preview

@@ -3,45 +3,76 @@
 #include <algorithm>
 
 #include "server/job_store.hpp"
+#include "server/sha256.hpp"
 
 namespace gearsph::server {
 
-Sessions::Sessions(std::chrono::seconds lifetime, std::size_t max_sessions)
-    : lifetime_(lifetime), max_sessions_(std::max<std::size_t>(1, max_sessions)) {}
+Sessions::Sessions(JobStore& store, std::string token, std::chrono::seconds lifetime,
+                   std::size_t max_sessions)
+    : store_(store),
+      token_(std::move(token)),
+      lifetime_(lifetime),
+      max_sessions_(std::max<std::size_t>(1, max_sessions)) {}
+
+std::string Sessions::hash_of(std::string_view id) const {
+  // The token first: another token's sessions hash to other rows.
+  return sha256_hex(token_ + '\n' + std::string(id));
+}
 
 std::string Sessions::open() {
   const std::string id = new_claim_token();
-  const auto now = Clock::now();
-  std::lock_guard<std::mutex> lock(mutex_);
-  for (auto it = expires_.begin(); it != expires_.end();) {
-    it = it->second <= now ? expires_.erase(it) : std::next(it);
+  const std::int64_t evicted =
+      store_.open_session(hash_of(id), static_cast<double>(lifetime_.count()),
+                          static_cast<std::int64_t>(max_sessions_));
+  if (evicted > 0) {
+    // Which went is the store's to know: this process asks again for all.
+    std::lock_guard<std::mutex> lock(mutex_);
+    confirmed_.clear();
   }
-  while (expires_.size() >= max_sessions_) {
-    expires_.erase(
-        std::min_element(expires_.begin(), expires_.end(),
-                         [](const auto& a, const auto& b) { return a.second < b.second; }));
-  }
-  expires_[id] = now + lifetime_;
   return id;
 }
 
 bool Sessions::valid(std::string_view id) const {
+  const std::string hash = hash_of(id);
+  const auto now = Clock::now();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = confirmed_.find(hash);
+    if (it != confirmed_.end() && now - it->second < kSessionRecheck) return true;
+  }
+  bool open = false;
+  try {
+    open = store_.session_open(hash);
+  } catch (const std::exception&) {
+    // The store away: what this process confirmed holds until it answers again.
+    std::lock_guard<std::mutex> lock(mutex_);
+    return confirmed_.count(hash) > 0;
+  }
   std::lock_guard<std::mutex> lock(mutex_);
-  const auto it = expires_.find(id);
-  return it != expires_.end() && it->second > Clock::now();
-}
-
-bool Sessions::close(std::string_view id) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  const auto it = expires_.find(id);
-  if (it == expires_.end()) return false;
-  expires_.erase(it);
+  if (!open) {
+    confirmed_.erase(hash);
+    return false;
+  }
+  if (confirmed_.size() >= max_sessions_) {
+    for (auto it = confirmed_.begin(); it != confirmed_.end();) {
+      it = now - it->second >= kSessionRecheck ? confirmed_.erase(it) : std::next(it);
+    }
+  }
+  if (confirmed_.size() < max_sessions_) confirmed_[hash] = now;
   return true;
 }
 
+bool Sessions::close(std::string_view id) {
+  const std::string hash = hash_of(id);
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    confirmed_.erase(hash);
+  }
+  return store_.close_session(hash);
+}
+
 std::size_t Sessions::size() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return expires_.size();
+  return static_cast<std::size_t>(store_.open_sessions());
 }
 
 LoginThrottle::LoginThrottle(int max_failures, std::chrono::seconds window)

@@ -3,10 +3,13 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -103,6 +106,17 @@ std::string job_name(const std::string& id) {
   return "gearsph-" + id;
 }
 
+// Seconds since the file was last written (0 if it cannot be told): the
+// FE stage reports after each mesh, and its clock runs in between.
+double seconds_since_written(const std::filesystem::path& file) {
+  struct stat st {};
+  timespec now{};
+  if (::stat(file.c_str(), &st) != 0 || ::clock_gettime(CLOCK_REALTIME, &now) != 0) return 0.0;
+  const double ago =
+      double(now.tv_sec - st.st_mtim.tv_sec) + 1e-9 * double(now.tv_nsec - st.st_mtim.tv_nsec);
+  return std::max(0.0, ago);
+}
+
 }  // namespace
 
 std::optional<std::string> parse_sbatch_parsable(std::string_view out) {
@@ -182,6 +196,22 @@ std::optional<RunProgress> parse_run_progress(std::string_view output_tail) {
       p.step = step;
       p.steps = steps;
       last = p;
+    }
+  }
+  return last;
+}
+
+std::optional<StageProgress> parse_stage_progress(std::string_view output_tail) {
+  std::optional<StageProgress> last;
+  for (std::string_view line : split(output_tail, '\n')) {
+    line = trim(line);
+    if (line.rfind("[stage ", 0) != 0) continue;
+    const std::string text(line);
+    char stage[32] = {};
+    double percent = 0, elapsed = 0;
+    if (std::sscanf(text.c_str(), "[stage %31[a-z_]] %lf %% done, %lf s", stage, &percent,
+                    &elapsed) == 3) {
+      last = StageProgress{stage, std::clamp(percent / 100.0, 0.0, 1.0), elapsed};
     }
   }
   return last;
@@ -452,6 +482,7 @@ void SlurmDispatcher::track() {
                                  (phase == SlurmPhase::ended ? " had ended" : " was cancelled"),
                              last);
       store_.forget_dispatch(job.id);
+      fe_estimates_.erase(job.id);
       // What the run wrote goes with it (a DELETE later removes anything a
       // cancelled run still wrote while it stopped).
       std::error_code ec;
@@ -482,15 +513,57 @@ void SlurmDispatcher::track() {
       if (job.status == JobStatus::accepted) {
         store_.start_dispatched(job.id, ref, "running in Slurm as job " + slurm_id);
       }
-      const auto p = parse_run_progress(tail_of(dir_of(job.id) / ".slurm" / "output.txt", 4096));
-      if (p && p->step != job.step) {
-        store_.save_progress(
-            {{job.id, p->step, p->time_s, p->wall_s, p->eta_s, percent(p->step, p->steps)}});
-      }
+      follow_running(job);
       continue;
     }
     conclude(job, slurm_id, state);
   }
+}
+
+const FeStageEstimate& SlurmDispatcher::fe_estimate_of(const std::string& id) {
+  auto it = fe_estimates_.find(id);
+  if (it == fe_estimates_.end()) {
+    FeStageEstimate e;
+    try {
+      e = estimate_fe_stage(store_);
+    } catch (const std::exception&) {
+      // The store away: the fallback figure will do for an estimate.
+    }
+    it = fe_estimates_.emplace(id, e).first;
+  }
+  return it->second;
+}
+
+void SlurmDispatcher::follow_running(const JobRecord& job) {
+  const std::filesystem::path output = dir_of(job.id) / ".slurm" / "output.txt";
+  const std::string tail = tail_of(output, 8192);
+  const auto p = parse_run_progress(tail);
+  const bool fe = runs_fe_check(nlohmann::json::parse(job.job_json, nullptr, false));
+  if (!fe) {
+    if (p && p->step != job.step) {
+      store_.save_progress(
+          {{job.id, p->step, p->time_s, p->wall_s, p->eta_s, percent(p->step, p->steps)}});
+    }
+    return;
+  }
+  // The FE stage's clock runs between its reports: saved at every pass.
+  ProgressUpdate u{job.id, job.step, job.simulated_s, 0.0, 0.0, 0, "sph", ""};
+  if (p) {
+    u.step = p->step;
+    u.simulated_s = p->time_s;
+    u.wall_s = p->wall_s;
+    u.eta_s = p->eta_s;
+    u.progress = percent(p->step, p->steps);
+  }
+  const auto stage = parse_stage_progress(tail);
+  if (stage && stage->stage == "fe_check") {
+    const FeStageNow now{stage->fraction, stage->elapsed_s, seconds_since_written(output),
+                         u.wall_s};
+    count_fe_stage(u, fe_estimate_of(job.id), &now);
+  } else {
+    count_fe_stage(u, fe_estimate_of(job.id), nullptr);
+  }
+  store_.save_progress({u});
 }
 
 void SlurmDispatcher::conclude(const JobRecord& job, const std::string& slurm_id,
@@ -528,7 +601,7 @@ void SlurmDispatcher::conclude(const JobRecord& job, const std::string& slurm_id
   last.wall_s = job.wall_s;
   last.progress = job.progress;
   JobStatus outcome = JobStatus::failed;
-  std::string message;
+  std::string message, fe_sentence;
   const std::string where = " (Slurm job " + slurm_id + ")";
   const auto summary = nlohmann::json::parse(read_text(dir / "summary.json"), nullptr, false);
   if (summary.is_object()) {
@@ -536,11 +609,26 @@ void SlurmDispatcher::conclude(const JobRecord& job, const std::string& slurm_id
     last.wall_s = summary.value("wall_s", last.wall_s);
     last.simulated_s = summary.value("simulated_s", last.simulated_s);
   }
+  const double sph_wall_s = last.wall_s;
+  if (runs_fe_check(nlohmann::json::parse(job.job_json, nullptr, false))) {
+    // The FE stage's record, as the server's own workers make it (worker_pool.cpp).
+    const std::string run_status = !exit_code        ? "ended"
+                                   : *exit_code == 0 ? "completed"
+                                   : *exit_code == 3 ? "diverged"
+                                   : *exit_code == 4 ? "cancelled"
+                                                     : "failed";
+    const FeOutcome fe = fe_outcome(summary.is_object() ? summary : nlohmann::json::object(),
+                                    run_status, fe_estimate_of(job.id));
+    fe_sentence = "; " + fe.sentence;
+    last.wall_s += fe.wall_s;
+    last.fe_check_json = fe.document.dump();
+  }
+  fe_estimates_.erase(job.id);
   if (exit_code && *exit_code == 0) {
     outcome = JobStatus::successful;
     last.progress = 100;
-    message = "completed " + std::to_string(last.step) + " steps in " + fixed(last.wall_s, 2) +
-              " s" + where;
+    message = "completed " + std::to_string(last.step) + " steps in " + fixed(sph_wall_s, 2) +
+              " s" + fe_sentence + where;
   } else if (exit_code && *exit_code == 3) {
     message = "the run diverged" + where + "; see summary.json";
   } else if (exit_code && *exit_code == 2) {

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "server/dispatcher.hpp"
+#include "server/fe_stage_estimate.hpp"
 #include "server/job_store.hpp"
 
 namespace gearsph::server {
@@ -56,6 +57,10 @@ struct RunProgress {
   double time_s = 0, wall_s = 0, eta_s = 0;
 };
 std::optional<RunProgress> parse_run_progress(std::string_view output_tail);
+
+// The last stage line `gearsph run` printed after its time loop
+// ("[stage fe_check] 50.0 % done, 3.21 s"; apps/gearsph/progress.hpp).
+std::optional<StageProgress> parse_stage_progress(std::string_view output_tail);
 
 struct SlurmOptions {
   std::filesystem::path jobs_dir;        // each job runs in jobs_dir / id (shared by the nodes)
@@ -102,11 +107,17 @@ class SlurmDispatcher : public Dispatcher {
   bool submit(const JobRecord& job);
   void track();
   void conclude(const JobRecord& job, const std::string& slurm_id, const std::string& state);
+  // A running job's progress from its output; for a job with the FE check,
+  // both stages counted as the server's own workers count them.
+  void follow_running(const JobRecord& job);
+  // The FE stage's estimate of a job that runs the check, made once per job.
+  const FeStageEstimate& fe_estimate_of(const std::string& id);
   std::filesystem::path dir_of(const std::string& id) const { return options_.jobs_dir / id; }
 
   JobStore& store_;
   SlurmOptions options_;
   std::map<std::string, std::chrono::steady_clock::time_point> ended_without_status_;
+  std::map<std::string, FeStageEstimate> fe_estimates_;
   std::mutex mutex_;
   std::condition_variable wake_;
   bool stop_ = false;

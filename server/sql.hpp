@@ -87,6 +87,7 @@ struct Dialect {
   std::string skip_locked;     // after a subquery that picks one row to claim
   std::string lock_row;        // after a SELECT of a row about to be changed
   std::string migration_lock;  // run first in the migration's transaction, or ""
+  std::string submit_lock;     // run first in a submission under a queue quota, or ""
   // Migration i brings the schema from version i to i + 1.
   std::vector<std::string> migrations;
 };

@@ -93,6 +93,16 @@ CREATE TRIGGER gearsph_jobs_changed AFTER INSERT OR UPDATE ON jobs
   FOR EACH ROW EXECUTE FUNCTION gearsph_jobs_changed();
 )sql";
 
+// 6: the dashboard's sessions, shared by every API node (sessions.hpp): the
+// SHA-256 of each session id, never the id, and when it ends.
+const char* const kMigration6 = R"sql(
+CREATE TABLE sessions (
+  id_hash TEXT PRIMARY KEY,
+  expires TIMESTAMPTZ NOT NULL
+);
+CREATE INDEX sessions_by_expiry ON sessions(expires);
+)sql";
+
 // ISO 8601 UTC with milliseconds, as SQLite's strftime writes them.
 #define GEARSPH_ISO(t) "to_char((" t ") AT TIME ZONE 'UTC', 'YYYY-MM-DD\"T\"HH24:MI:SS.MS\"Z\"')"
 
@@ -108,8 +118,10 @@ sql::Dialect postgres_dialect() {
       .skip_locked = " FOR UPDATE SKIP LOCKED",
       .lock_row = " FOR UPDATE",
       .migration_lock = "SELECT pg_advisory_xact_lock(7146301)",  // any fixed number
+      // Only submissions wait for each other; workers' updates of the jobs do not.
+      .submit_lock = "SELECT pg_advisory_xact_lock(7146302)",
       .migrations = {kMigration1, sql::kClaimTokens, sql::kWorkerHeartbeats, kMigration4,
-                     sql::kStages},
+                     sql::kStages, kMigration6},
   };
 }
 

@@ -71,6 +71,17 @@ CREATE INDEX jobs_by_dispatch ON jobs(dispatch_ref) WHERE dispatch_ref IS NOT NU
 
 // 3, 4 and 5: sql.hpp.
 
+// 6: the dashboard's sessions, shared by every process of the store
+// (sessions.hpp): the SHA-256 of each session id, never the id, and when
+// it ends, on the lease clock (seconds since 1970).
+const char* const kMigration6 = R"sql(
+CREATE TABLE sessions (
+  id_hash TEXT PRIMARY KEY,
+  expires REAL NOT NULL
+);
+CREATE INDEX sessions_by_expiry ON sessions(expires);
+)sql";
+
 // Seconds since 1970 on SQLite's clock: leases are REAL.
 #define GEARSPH_EPOCH "((julianday('now') - 2440587.5) * 86400.0)"
 
@@ -85,8 +96,9 @@ sql::Dialect sqlite_dialect() {
       .skip_locked = "",  // one writer at a time: the claim's UPDATE is atomic as it is
       .lock_row = "",     // BEGIN IMMEDIATE holds the write lock already
       .migration_lock = "",
+      .submit_lock = "",  // BEGIN IMMEDIATE: one writer at a time
       .migrations = {kMigration1, kMigration2, sql::kClaimTokens, sql::kWorkerHeartbeats,
-                     sql::kStages},
+                     sql::kStages, kMigration6},
   };
 }
 

@@ -10,6 +10,7 @@
 #include "server/documents.hpp"
 #include "server/job_limits.hpp"
 #include "server/problem.hpp"
+#include "server/router.hpp"
 #include "solver/job/job.hpp"
 #include "solver/job/job_size.hpp"
 
@@ -283,44 +284,76 @@ std::variant<NewJob, Refusal> admit_job(const Services& services, const nlohmann
   }
 }
 
-std::optional<StringResponse> queue_refusal(Services& s, const Request& req, std::int64_t adding) {
+namespace {
+
+// 503 (the whole queue) or 429 (this client's share) with Retry-After and a sentence.
+StringResponse queue_full_answer(const Services& s, const Request& req, bool whole_queue,
+                                 std::int64_t queued, std::int64_t adding) {
   const Limits& l = s.config.limits;
   // A queue drains at the speed of its jobs: a try a minute later is soon enough.
   constexpr int kRetryAfter_s = 60;
-  auto refuse = [&](http::status status, const std::string& detail) {
-    problem::Problem p;
-    p.status = status;
-    p.type = problem::kQueueFull;
-    p.title = "The queue is full";
-    p.detail = detail;
-    p.instance = req.path;
-    StringResponse res = problem::make(p);
-    res.set(http::field::retry_after, std::to_string(kRetryAfter_s));
-    return res;
-  };
   auto jobs = [](std::int64_t n) { return std::to_string(n) + (n == 1 ? " job" : " jobs"); };
+  problem::Problem p;
+  p.type = problem::kQueueFull;
+  p.title = "The queue is full";
+  p.instance = req.path;
+  if (whole_queue) {
+    p.status = http::status::service_unavailable;
+    p.detail = jobs(queued) + " wait to run and this server queues at most " + jobs(l.max_queued) +
+               " (--max-queued); this request would add " + jobs(adding) +
+               ": try again once some have started";
+  } else {
+    p.status = http::status::too_many_requests;
+    p.detail = jobs(queued) + " from " + quota_client(s, req) +
+               " wait to run and one client may queue at most " + jobs(l.max_queued_per_client) +
+               " (--max-queued-per-client); this request would add " + jobs(adding) +
+               ": try again once some have started, or dismiss some";
+  }
+  StringResponse res = problem::make(p);
+  res.set(http::field::retry_after, std::to_string(kRetryAfter_s));
+  return res;
+}
+
+}  // namespace
+
+std::string quota_client(const Services& s, const Request& req) {
+  std::string who = credential_identity(req.msg.base(), s.config.token, s.sessions);
+  return who.empty() ? req.client : who;
+}
+
+QueueQuota queue_quota(const Services& s, const Request& req) {
+  QueueQuota q;
+  q.max_queued = s.config.limits.max_queued;
+  q.max_queued_per_client = s.config.limits.max_queued_per_client;
+  q.client = quota_client(s, req);
+  return q;
+}
+
+std::optional<StringResponse> queue_refusal(Services& s, const Request& req, std::int64_t adding) {
+  const Limits& l = s.config.limits;
   if (l.max_queued > 0) {
     const auto counts = s.store.count_by_status();
     const auto it = counts.find("accepted");
     const std::int64_t queued = it == counts.end() ? 0 : it->second;
-    if (queued + adding > l.max_queued) {
-      return refuse(http::status::service_unavailable,
-                    jobs(queued) + " wait to run and this server queues at most " +
-                        jobs(l.max_queued) + " (--max-queued); this request would add " +
-                        jobs(adding) + ": try again once some have started");
+    if (queued + adding > l.max_queued) return queue_full_answer(s, req, true, queued, adding);
+  }
+  const std::string client = quota_client(s, req);
+  if (l.max_queued_per_client > 0 && !client.empty()) {
+    const std::int64_t mine = s.store.queued_from(client);
+    if (mine + adding > l.max_queued_per_client) {
+      return queue_full_answer(s, req, false, mine, adding);
     }
   }
-  if (l.max_queued_per_client > 0 && !req.client.empty()) {
-    const std::int64_t mine = s.store.queued_from(req.client);
-    if (mine + adding > l.max_queued_per_client) {
-      return refuse(http::status::too_many_requests,
-                    jobs(mine) + " from " + req.client +
-                        " wait to run and one client may queue "
-                        "at most " +
-                        jobs(l.max_queued_per_client) +
-                        " (--max-queued-per-client); this request would add " + jobs(adding) +
-                        ": try again once some have started, or dismiss some");
-    }
+  return std::nullopt;
+}
+
+std::optional<StringResponse> queue_refusal(const Services& s, const Request& req,
+                                            const SubmitResult& r, std::int64_t adding) {
+  if (r.kind == SubmitResult::Kind::queue_full) {
+    return queue_full_answer(s, req, true, r.queued, adding);
+  }
+  if (r.kind == SubmitResult::Kind::client_queue_full) {
+    return queue_full_answer(s, req, false, r.queued, adding);
   }
   return std::nullopt;
 }

@@ -50,6 +50,15 @@ std::variant<NewJob, Refusal> admit_job(const Services& services, const nlohmann
 // sentence; nullopt when they fit.
 std::optional<StringResponse> queue_refusal(Services& services, const Request& req,
                                             std::int64_t adding);
+// The same for a submission the store refused (SubmitResult::Kind::queue_full,
+// client_queue_full): the check above is a cheap early answer, the store's
+// the one that holds under concurrent submissions.
+std::optional<StringResponse> queue_refusal(const Services& services, const Request& req,
+                                            const SubmitResult& r, std::int64_t adding);
+// Whose share of the queue a request's jobs count against (NewJob::client).
+std::string quota_client(const Services& services, const Request& req);
+// The quota the store checks as it stores this request's jobs.
+QueueQuota queue_quota(const Services& services, const Request& req);
 
 // The problem answer for a refusal. `prefix` locates the job in the request
 // body for the error pointers (e.g. "/inputs/job"); `context` starts each

@@ -74,38 +74,19 @@ struct WorkerPool::RunningJob {
 
 namespace {
 
-// A running job's numbers, both stages counted: the FE stage's time, its
-// estimate until a part of it is done and its own pace after, is added to
-// the wall time and the ETA, and the progress is the share of the total
-// time spent, below 100 % until the check is done too.
 ProgressUpdate live_update(const WorkerPool::RunningJob& j) {
   const Progress& p = j.progress;
   ProgressUpdate u{j.id,    p.step, p.time_s, p.wall_s, p.eta_s, percent(p.step, p.steps),
                    j.stage, ""};
   if (!j.fe) return u;
-  nlohmann::json fe = j.fe_estimate.to_json();
-  double fe_left = j.fe_estimate.seconds;
-  if (j.stage == "fe_check") {
-    const StageProgress& f = j.fe_progress;
-    // The check reports after each mesh; its clock runs in between.
-    const double elapsed =
-        f.elapsed_s + std::chrono::duration<double>(Clock::now() - j.fe_reported).count();
-    // Until a part is done, the estimate; then the pace of the parts done.
-    fe_left = f.fraction > 0 ? std::max(0.0, f.elapsed_s / f.fraction - elapsed)
-                             : std::max(0.0, j.fe_estimate.seconds - elapsed);
-    u.wall_s = j.sph_wall_s + elapsed;
-    u.eta_s = fe_left;
-    fe["status"] = "running";
-    fe["fraction"] = f.fraction;
-    fe["wall_s"] = elapsed;
-  } else {
-    u.eta_s = p.eta_s + fe_left;
-    fe["status"] = "pending";
+  if (j.stage != "fe_check") {
+    count_fe_stage(u, j.fe_estimate, nullptr);
+    return u;
   }
-  fe["eta_s"] = fe_left;
-  const double total = u.wall_s + u.eta_s;
-  u.progress = total > 0 ? std::clamp(static_cast<int>(100.0 * u.wall_s / total), 0, 99) : 0;
-  u.fe_check_json = fe.dump();
+  const FeStageNow now{j.fe_progress.fraction, j.fe_progress.elapsed_s,
+                       std::chrono::duration<double>(Clock::now() - j.fe_reported).count(),
+                       j.sph_wall_s};
+  count_fe_stage(u, j.fe_estimate, &now);
   return u;
 }
 
@@ -165,52 +146,6 @@ class WorkerPool::Observer : public RunObserver {
   WorkerPool& pool_;
   RunningJob& job_;
 };
-
-namespace {
-
-struct FeOutcome {
-  bool ok = false;  // compared (perhaps with SPH values missing)
-  double wall_s = 0.0;
-  nlohmann::json document;  // the job's fe_check member
-  std::string sentence;     // for the job's message
-};
-
-// The FE stage's outcome from the summary's fe_comparison block (fe/fe_check.hpp).
-FeOutcome fe_outcome(const WorkerPool::RunningJob& j, const RunResult& r) {
-  FeOutcome o;
-  if (!j.fe) return o;
-  const nlohmann::json* block = r.summary.is_object() && r.summary.contains("fe_comparison")
-                                    ? &r.summary["fe_comparison"]
-                                    : nullptr;
-  std::string status = "not_run", said;
-  if (block && block->is_object()) {
-    status = block->value("status", "failed");
-    said = block->value("message", "");
-    if (block->contains("wall_s") && (*block)["wall_s"].is_number()) {
-      o.wall_s = (*block)["wall_s"].get<double>();
-    }
-  } else if (r.status == "completed") {
-    status = "failed";
-    said = "the FE check left no outcome in the summary";
-  } else {
-    said = "the SPH run did not complete (" + r.status + ")";
-  }
-  o.ok = status == "compared" || status == "sph_values_missing";
-  o.document = {{"status", status},
-                {"message", said},
-                {"wall_s", o.wall_s},
-                {"estimate_s", j.fe_estimate.seconds},
-                {"basis", j.fe_estimate.basis}};
-  if (o.ok) {
-    o.sentence = "the FE check compared in " + fixed(o.wall_s, 2) + " s";
-  } else {
-    o.sentence = "the FE check " + std::string(status == "failed" ? "failed" : status) +
-                 (said.empty() ? "" : ": " + said);
-  }
-  return o;
-}
-
-}  // namespace
 
 WorkerPool::WorkerPool(JobStore& store, EventHub& hub, WorkerPoolOptions options)
     : store_(store), hub_(hub), options_(std::move(options)) {}
@@ -451,7 +386,7 @@ void WorkerPool::run(const JobRecord& job, int& held) {
     last.simulated_s = prepared.scene.sim.time;
     last.wall_s = r.wall_s;
     last.progress = percent(r.steps_done, prepared.steps);
-    const FeOutcome fe = fe_outcome(*rj, r);
+    const FeOutcome fe = rj->fe ? fe_outcome(r.summary, r.status, rj->fe_estimate) : FeOutcome{};
     if (rj->fe) {
       last.wall_s += fe.wall_s;
       last.fe_check_json = fe.document.dump();

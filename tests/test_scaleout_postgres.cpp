@@ -6,7 +6,10 @@
 // with SIGKILL mid-job has that job finished by another, the API serves
 // results and events of jobs it did not run, and a database restart loses
 // nothing.
+#include <atomic>
+#include <fstream>
 #include <random>
+#include <thread>
 
 #include "server/documents.hpp"
 #include "server/job_store.hpp"
@@ -96,7 +99,7 @@ TEST_F(ScaleOutPostgres, StoreClaimsEachJobOnceAcrossConnections) {
   // Opening again finds the schema current and migrates nothing.
   open_job_store(uri_);
   PgDatabase db(uri_);
-  EXPECT_EQ(db.value("SELECT version FROM schema_version"), "5");
+  EXPECT_EQ(db.value("SELECT version FROM schema_version"), "6");
   EXPECT_EQ(db.value("SELECT COUNT(*) FROM schema_version"), "1");
 }
 
@@ -440,6 +443,73 @@ TEST_F(ScaleOutPostgres, EventsOfJobsRunElsewhereReachTheApi) {
   ASSERT_FALSE(statuses.empty());
   EXPECT_EQ(statuses.back(), "successful");  // the stream ended after the final status
   EXPECT_EQ(c.get("/jobs/" + id).json().at("status"), "successful");
+}
+
+// Issue 49: on PostgreSQL too the quota is counted in the transaction that
+// inserts (behind an advisory lock: READ COMMITTED alone would let two
+// submissions count the same queue), so connections submitting at once,
+// as API nodes do, never overfill it.
+TEST_F(ScaleOutPostgres, QueueQuotaHoldsUnderConcurrentSubmissions) {
+  constexpr int kThreads = 8, kEach = 10;
+  QueueQuota quota;
+  quota.max_queued = 20;
+  quota.max_queued_per_client = 15;
+  quota.client = "a";
+  std::atomic<int> created{0}, whole{0}, share{0};
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t) {
+    threads.emplace_back([&, t] {
+      auto own = open_job_store(uri_);
+      for (int i = 0; i < kEach; ++i) {
+        NewJob j;
+        j.id = new_id();
+        j.name = "quota";
+        j.job_json = "{}";
+        j.steps = 1;
+        // Half the threads are client "a", half another client.
+        j.client = t % 2 ? "a" : "b";
+        QueueQuota q = quota;
+        q.client = j.client;
+        const SubmitResult r = own->submit(j, std::nullopt, q);
+        if (r.kind == SubmitResult::Kind::created) ++created;
+        if (r.kind == SubmitResult::Kind::queue_full) ++whole;
+        if (r.kind == SubmitResult::Kind::client_queue_full) ++share;
+      }
+    });
+  }
+  for (auto& th : threads) th.join();
+  auto store = open_job_store(uri_);
+  EXPECT_EQ(created.load(), 20);
+  EXPECT_EQ(whole.load() + share.load(), kThreads * kEach - 20);
+  EXPECT_EQ(store->count_by_status().at("accepted"), 20);
+  EXPECT_LE(store->queued_from("a"), 15);
+  EXPECT_LE(store->queued_from("b"), 15);
+}
+
+// Issue 49: two API nodes on one PostgreSQL store share the dashboard's
+// sessions: a login on one is known on the other, a DELETE /login on one
+// holds on the other (within kSessionRecheck, 2 s).
+TEST_F(ScaleOutPostgres, SessionsHoldOnEveryApiNode) {
+  TempDir dir;
+  const std::string token = "the-service-token-0123456789";
+  std::ofstream(dir.path() / "token") << token << "\n";
+  const std::vector<std::string> extra = {"--token-file", (dir.path() / "token").string()};
+  ServerProcess one(api_args(extra)), two(api_args(extra));
+  auto c1 = one.client();
+  auto c2 = two.client();
+  const ClientResponse login = c1.post_json("/login", json{{"token", token}}.dump());
+  ASSERT_EQ(login.status, 204u) << login.body << one.log();
+  const std::string set = login.header("Set-Cookie");
+  const std::string cookie = set.substr(0, set.find(';'));
+  EXPECT_EQ(c2.get("/jobs", {{"Cookie", cookie}}).status, 200u) << two.log();
+  EXPECT_EQ(c1.request("DELETE", "/login", "", {{"Cookie", cookie}}).status, 204u);
+  EXPECT_EQ(c1.get("/jobs", {{"Cookie", cookie}}).status, 401u);
+  unsigned status = 0;
+  const auto until = Clock::now() + std::chrono::seconds(10);
+  while (Clock::now() < until && (status = c2.get("/jobs", {{"Cookie", cookie}}).status) != 401u) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_EQ(status, 401u);
 }
 
 TEST_F(ScaleOutPostgres, DatabaseRestartLosesNothing) {

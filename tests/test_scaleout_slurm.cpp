@@ -4,7 +4,8 @@
 // tests/scaleout/slurm.sh, and sacct's documented --parsable2 form); then a
 // real single-node Slurm on loopback (tests/scaleout/slurm.sh) running jobs
 // submitted through the API to completion, a cancellation, and the server
-// killed and restarted while its Slurm job runs.
+// killed and restarted while its Slurm job runs, and the FE stage of a
+// Slurm job recorded as the server's own workers record it.
 #include <cstdlib>
 #include <fstream>
 
@@ -282,6 +283,72 @@ TEST_F(ScaleOutSlurm, ServerRestartKeepsTrackOfSubmittedJobs) {
   EXPECT_EQ(s.at("status"), "successful") << s.dump() << api.log();
   EXPECT_EQ(s.at("attempts"), 1);  // tracked, not run again
   EXPECT_EQ(c2.get("/jobs/" + id + "/results").status, 200u);
+}
+
+// Issue 49: a Slurm job's FE stage is counted and its failure recorded as
+// for the server's own workers (tests/test_fe_server.cpp,
+// TheFeStageIsCountedAndItsFailureShown). The stand-in gmsh waits for the
+// test's word, then fails; the Slurm job inherits the server's environment
+// (sbatch --export=ALL, the default).
+TEST_F(ScaleOutSlurm, TheFeStageOfASlurmJobIsRecorded) {
+  TempDir dir;
+  const fs::path go = dir.path() / "gmsh.go";
+  const fs::path gmsh = dir.path() / "gmsh";
+  std::ofstream(gmsh) << "#!/bin/sh\nwhile [ ! -f " << go.string()
+                      << " ]; do sleep 0.05; done\necho 'meshing failed' >&2\nexit 1\n";
+  fs::permissions(gmsh, fs::perms::owner_all);
+  ::setenv("GEARSPH_GMSH", gmsh.c_str(), 1);
+  ::setenv("GEARSPH_CCX", "/bin/true", 1);
+  ServerProcess api({"--dispatch", "slurm", "--threads-per-job", "1"});
+  ::unsetenv("GEARSPH_GMSH");
+  ::unsetenv("GEARSPH_CCX");
+  auto c = api.client();
+  const json job = {{"name", "fe-check-slurm"},
+                    {"scene",
+                     {{"type", "rack_pinion"},
+                      {"quasi_static", true},
+                      {"fe_check", true},
+                      {"pinion", {{"omega_rad_s", 0}}},
+                      {"rack", {{"velocity_m_s", 0}, {"load_N", 1000}}}}},
+                    {"time", {{"end_s", 2e-4}}}};
+  const std::string id = submit(c, job);
+  ASSERT_FALSE(id.empty());
+
+  // In the FE stage: not 100 %, time left, the stage's clock running.
+  const json fe = wait_for(
+      c, id,
+      [](const json& s) {
+        return is_final(s.at("status")) ||
+               (s.at("stage") == "fe_check" && s.at("fe_check").value("wall_s", 0.0) >= 1.0);
+      },
+      std::chrono::seconds(300));
+  ASSERT_EQ(fe.at("stage"), "fe_check") << fe.dump() << api.log();
+  EXPECT_EQ(fe.at("status"), "running");
+  EXPECT_EQ(fe.at("fe_check").at("status"), "running") << fe.dump();
+  EXPECT_LT(fe.at("progress").get<int>(), 100);
+  EXPECT_GT(fe.at("eta_s").get<double>(), 0.0) << fe.dump();
+  EXPECT_GE(fe.at("stage_wall_s").at("fe_check").get<double>(), 1.0) << fe.dump();
+  std::ofstream(go) << "go\n";
+
+  // The SPH result stands; the failed check is in the status and the message.
+  const json final = wait_final(c, id, std::chrono::seconds(120));
+  ASSERT_EQ(final.at("status"), "successful") << final.dump() << api.log();
+  EXPECT_EQ(final.at("progress"), 100);
+  const json& check = final.at("fe_check");
+  ASSERT_TRUE(check.is_object()) << final.dump();
+  EXPECT_EQ(check.at("status"), "failed") << final.dump();
+  EXPECT_NE(check.at("message").get<std::string>().find("gmsh"), std::string::npos) << check.dump();
+  EXPECT_GT(check.at("estimate_s").get<double>(), 0.0);
+  EXPECT_EQ(check.at("basis"), "fallback");
+  const std::string message = final.at("message").get<std::string>();
+  EXPECT_NE(message.find("the FE check failed"), std::string::npos) << message;
+  EXPECT_NE(message.find("(Slurm job "), std::string::npos) << message;
+  // At least what the running job showed (the time since the output's last
+  // line, on the same clock), less the output's write.
+  const double fe_wall = final.at("stage_wall_s").at("fe_check").get<double>();
+  EXPECT_GE(fe_wall, fe.at("stage_wall_s").at("fe_check").get<double>() - 0.05) << final.dump();
+  EXPECT_NEAR(final.at("wall_s").get<double>(),
+              final.at("stage_wall_s").at("sph").get<double>() + fe_wall, 1e-6);
 }
 
 }  // namespace

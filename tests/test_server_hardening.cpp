@@ -384,6 +384,137 @@ TEST(ServerQueue, QuotasRefuseJobsBeyondTheQueue) {
   }
 }
 
+// Issue 49: the quota holds exactly under concurrent submissions: the
+// count and the insert are one transaction of the store. Twelve clients
+// at once, each on its own connection, for a queue of five.
+TEST(ServerQueue, ConcurrentSubmissionsNeverOverfillTheQueue) {
+  ServerProcess server({"--no-local-workers", "--max-queued", "5"});
+  constexpr int kClients = 12, kEach = 2;
+  std::atomic<int> created{0}, full{0}, other{0};
+  std::vector<std::thread> clients;
+  for (int i = 0; i < kClients; ++i) {
+    clients.emplace_back([&] {
+      auto c = server.client(std::chrono::seconds(60));
+      for (int k = 0; k < kEach; ++k) {
+        const unsigned status = c.post_json("/jobs", tiny_job().dump()).status;
+        if (status == 201u) {
+          ++created;
+        } else if (status == 503u) {
+          ++full;
+        } else {
+          ++other;
+        }
+      }
+    });
+  }
+  for (auto& t : clients) t.join();
+  EXPECT_EQ(created.load(), 5);
+  EXPECT_EQ(full.load(), kClients * kEach - 5);
+  EXPECT_EQ(other.load(), 0);
+  auto c = server.client();
+  EXPECT_EQ(c.get("/jobs?status=accepted").json().at("jobs").size(), 5u);
+}
+
+// Issue 49: the per-client quota counts the authenticated identity where
+// there is one (each dashboard session its own share, the bearer token
+// one), and the address X-Forwarded-For names only from a --trusted-proxy.
+TEST(ServerQueue, TheClientQuotaIsPerIdentityAndTrustedProxiesOnly) {
+  {
+    // The test connects from 127.0.0.1: here a proxy the server trusts.
+    ServerProcess server(
+        {"--no-local-workers", "--max-queued-per-client", "1", "--trusted-proxy", "127.0.0.1"});
+    auto c = server.client();
+    auto from = [&](const std::string& address) {
+      return c.post_json("/jobs", tiny_job().dump(), {{"X-Forwarded-For", address}});
+    };
+    EXPECT_EQ(from("203.0.113.1").status, 201u);
+    const ClientResponse again = from("203.0.113.1");
+    EXPECT_EQ(again.status, 429u) << again.body;
+    EXPECT_NE(again.json().at("detail").get<std::string>().find("203.0.113.1"), std::string::npos)
+        << again.body;
+    EXPECT_EQ(from("203.0.113.2").status, 201u);  // another client behind the same proxy
+    // What a client writes left of the proxy's entry changes nothing.
+    EXPECT_EQ(from("198.51.100.7, 203.0.113.1").status, 429u);
+  }
+  {
+    // Not trusted (the default): X-Forwarded-For is the client's to invent.
+    ServerProcess server({"--no-local-workers", "--max-queued-per-client", "1"});
+    auto c = server.client();
+    EXPECT_EQ(c.post_json("/jobs", tiny_job().dump(), {{"X-Forwarded-For", "203.0.113.1"}}).status,
+              201u);
+    EXPECT_EQ(c.post_json("/jobs", tiny_job().dump(), {{"X-Forwarded-For", "203.0.113.2"}}).status,
+              429u);
+  }
+  {
+    TempDir dir;
+    const std::string token = "the-service-token-0123456789";
+    std::ofstream(dir.path() / "token") << token << "\n";
+    ServerProcess server({"--no-local-workers", "--max-queued-per-client", "1", "--token-file",
+                          (dir.path() / "token").string()});
+    auto c = server.client();
+    auto login = [&] {
+      const std::string set =
+          c.post_json("/login", json{{"token", token}}.dump()).header("Set-Cookie");
+      return set.substr(0, set.find(';'));
+    };
+    const std::string one = login(), two = login();
+    // Two dashboards from one address: each session has its own share.
+    EXPECT_EQ(c.post_json("/jobs", tiny_job().dump(), {{"Cookie", one}}).status, 201u);
+    const ClientResponse again = c.post_json("/jobs", tiny_job().dump(), {{"Cookie", one}});
+    EXPECT_EQ(again.status, 429u) << again.body;
+    EXPECT_NE(again.json().at("detail").get<std::string>().find("session "), std::string::npos);
+    EXPECT_EQ(again.json().at("detail").get<std::string>().find(one.substr(16)), std::string::npos)
+        << "the answer shows the session id: " << again.body;
+    EXPECT_EQ(c.post_json("/jobs", tiny_job().dump(), {{"Cookie", two}}).status, 201u);
+    // The bearer token is one identity, whoever holds it.
+    const HttpClient::Headers bearer = {{"Authorization", "Bearer " + token}};
+    EXPECT_EQ(c.post_json("/jobs", tiny_job().dump(), bearer).status, 201u);
+    EXPECT_EQ(c.post_json("/jobs", tiny_job().dump(), bearer).status, 429u);
+  }
+}
+
+// Issue 49: sessions are in the job store, so two API nodes on one store
+// (here SQLite, `--store sqlite:PATH`) know each other's logins, and a
+// DELETE /login on one revokes the session on the other.
+TEST(ServerToken, SessionsHoldOnEveryApiNodeOfAStore) {
+  TempDir dir;
+  const std::string token = "the-service-token-0123456789";
+  std::ofstream(dir.path() / "token") << token << "\n";
+  const std::vector<std::string> args = {"--store",
+                                         "sqlite:" + (dir.path() / "jobs.db").string(),
+                                         "--results",
+                                         (dir.path() / "results").string(),
+                                         "--no-local-workers",
+                                         "--token-file",
+                                         (dir.path() / "token").string()};
+  ServerProcess one(args), two(args);
+  auto c1 = one.client();
+  auto c2 = two.client();
+  const ClientResponse login = c1.post_json("/login", json{{"token", token}}.dump());
+  ASSERT_EQ(login.status, 204u) << login.body;
+  const std::string set = login.header("Set-Cookie");
+  const std::string cookie = set.substr(0, set.find(';'));
+  EXPECT_EQ(c2.get("/jobs", {{"Cookie", cookie}}).status, 200u) << two.log();
+  EXPECT_EQ(c2.get("/login", {{"Cookie", cookie}}).json().at("signed_in"), true);
+  // Revoked on the first node: refused on the second within kSessionRecheck (2 s).
+  EXPECT_EQ(c1.request("DELETE", "/login", "", {{"Cookie", cookie}}).status, 204u);
+  EXPECT_EQ(c1.get("/jobs", {{"Cookie", cookie}}).status, 401u);
+  unsigned status = 0;
+  const auto until = Clock::now() + std::chrono::seconds(10);
+  while (Clock::now() < until && (status = c2.get("/jobs", {{"Cookie", cookie}}).status) != 401u) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_EQ(status, 401u);
+  // A login on the second node, after the first restarted: still known.
+  const std::string set2 =
+      c2.post_json("/login", json{{"token", token}}.dump()).header("Set-Cookie");
+  const std::string cookie2 = set2.substr(0, set2.find(';'));
+  one.stop(SIGTERM);
+  one.start();
+  auto c1again = one.client();
+  EXPECT_EQ(c1again.get("/jobs", {{"Cookie", cookie2}}).status, 200u);
+}
+
 int status_rank(const std::string& s) {
   if (s == "accepted") return 0;
   if (s == "running") return 1;
@@ -1057,11 +1188,12 @@ class GatedStore : public JobStore {
     wake_.wait(lock, [&] { return waiting_ > 0; });
   }
 
-  SubmitResult submit(const NewJob& j, const std::optional<Idempotency>&) override {
+  SubmitResult submit(const NewJob& j, const std::optional<Idempotency>&,
+                      const QueueQuota&) override {
     return {SubmitResult::Kind::created, j.id};
   }
   SubmitResult submit_study(const NewStudy& s, const std::vector<NewJob>&,
-                            const std::optional<Idempotency>&) override {
+                            const std::optional<Idempotency>&, const QueueQuota&) override {
     return {SubmitResult::Kind::created, s.id};
   }
   std::optional<JobRecord> job(const std::string&) override {
@@ -1120,6 +1252,10 @@ class GatedStore : public JobStore {
   void forget_dispatch(const std::string&) override {}
   void worker_seen(const std::string&, int) override {}
   std::vector<WorkerSeen> workers_seen(double) override { return {}; }
+  std::int64_t open_session(const std::string&, double, std::int64_t) override { return 0; }
+  bool session_open(const std::string&) override { return false; }
+  bool close_session(const std::string&) override { return false; }
+  std::int64_t open_sessions() override { return 0; }
   Durations durations(const std::vector<double>&) override { return {}; }
   std::vector<std::string> prune(double) override { return {}; }
   std::vector<JobRecord> changed_within(double) override { return {}; }

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <thread>
 
+#include "server/client_identity.hpp"
 #include "server/documents.hpp"
 #include "server/event_hub.hpp"
 #include "server/http_types.hpp"
@@ -16,6 +17,7 @@
 #include "server/range_file.hpp"
 #include "server/router.hpp"
 #include "server/sessions.hpp"
+#include "server/sha256.hpp"
 #include "server/static_files.hpp"
 #include "server/study.hpp"
 #include "solver/job/job.hpp"
@@ -163,8 +165,9 @@ TEST(ServerJobStore, RecoverRequeuesThenFailsAfterMaxAttempts) {
   Database db(file);
   // Version 2 added claims with leases and outside schedulers (scale-out),
   // version 3 the claims' tokens, version 4 the workers' heartbeats,
-  // version 5 the run's stage, the FE check's outcome and the submitter.
-  EXPECT_EQ(db.query("SELECT version FROM schema_version").at(0).at(0), "5");
+  // version 5 the run's stage, the FE check's outcome and the submitter,
+  // version 6 the dashboard's sessions.
+  EXPECT_EQ(db.query("SELECT version FROM schema_version").at(0).at(0), "6");
   EXPECT_EQ(db.query("PRAGMA journal_mode").at(0).at(0), "wal");
 }
 
@@ -348,7 +351,9 @@ TEST(ServerSessions, FailedLoginsWaitUntilTheOldestIsAMinuteOld) {
   t.failed("a", t0 + seconds(61));
   EXPECT_EQ(t.wait("a", t0 + seconds(61)).count(), 0);
 
-  Sessions s(seconds(3600), 2);
+  TempDir dir;
+  auto store = open_sqlite_job_store(dir.path() / "jobs.db");
+  Sessions s(*store, "the token", seconds(3600), 2);
   const std::string a = s.open(), b = s.open();
   EXPECT_EQ(a.size(), 32u);  // 128 bits as hex
   EXPECT_TRUE(s.valid(a) && s.valid(b));
@@ -359,6 +364,121 @@ TEST(ServerSessions, FailedLoginsWaitUntilTheOldestIsAMinuteOld) {
   EXPECT_TRUE(s.close(b));
   EXPECT_FALSE(s.valid(b));
   EXPECT_FALSE(s.close(b));
+}
+
+// Issue 49: sessions are in the job store, so another process on it (an
+// API node) knows them and a revocation holds there; the store keeps only
+// hashes; another token's sessions are not this one's.
+TEST(ServerSessions, SessionsAreSharedThroughTheStore) {
+  using std::chrono::seconds;
+  TempDir dir;
+  auto one_store = open_sqlite_job_store(dir.path() / "jobs.db");
+  auto other_store = open_sqlite_job_store(dir.path() / "jobs.db");  // another connection
+  Sessions one(*one_store, "t", seconds(3600), 10);
+  Sessions other(*other_store, "t", seconds(3600), 10);
+  const std::string id = one.open();
+  EXPECT_TRUE(other.valid(id));
+  EXPECT_EQ(other.size(), 1u);
+  EXPECT_TRUE(other.close(id));  // revoked on the other node
+  EXPECT_FALSE(other.valid(id));
+  // The first node confirmed it before; past kSessionRecheck it asks the store again.
+  std::this_thread::sleep_for(kSessionRecheck + std::chrono::milliseconds(100));
+  EXPECT_FALSE(one.valid(id));
+  // Not a usable secret in the file: the id is nowhere in it.
+  const std::string kept = one.open();
+  const std::string bytes = slurp(dir.path() / "jobs.db") + slurp(dir.path() / "jobs.db-wal");
+  EXPECT_EQ(bytes.find(kept), std::string::npos);
+  Sessions rotated(*other_store, "another token", seconds(3600), 10);
+  EXPECT_FALSE(rotated.valid(kept));
+  EXPECT_TRUE(other.valid(kept));
+  // Ended ones are not open.
+  Sessions brief(*one_store, "t", seconds(0), 10);
+  EXPECT_FALSE(brief.valid(brief.open()));
+}
+
+TEST(ServerSessions, Sha256OfTheStandardVectors) {
+  // FIPS 180-2, appendix B, and the empty message.
+  EXPECT_EQ(sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  EXPECT_EQ(sha256_hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  EXPECT_EQ(sha256_hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
+            "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
+  EXPECT_EQ(sha256_hex(std::string(1000000, 'a')),
+            "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+  // Padding into a second block (sha256sum of 56 and 64 'x').
+  EXPECT_EQ(sha256_hex(std::string(56, 'x')),
+            "04c26261370ee7541549d16dee320c723e3fd14671e66a099afe0a377c16888e");
+  EXPECT_EQ(sha256_hex(std::string(64, 'x')),
+            "7ce100971f64e7001e8fe5a51973ecdfe1ced42befe7ee8d5fd6219506b5393c");
+}
+
+// Issue 49: X-Forwarded-For is heeded only from a --trusted-proxy, read
+// from the right, and what the client wrote left of the proxy's own entry
+// changes nothing.
+TEST(ServerClient, ForwardedForOnlyFromTrustedProxies) {
+  const std::vector<std::string> none, proxy = {"10.0.0.1"}, two = {"10.0.0.1", "10.0.0.2"};
+  EXPECT_EQ(forwarded_client("10.0.0.1", "203.0.113.5", none), "10.0.0.1");
+  EXPECT_EQ(forwarded_client("192.0.2.9", "203.0.113.5", proxy), "192.0.2.9");
+  EXPECT_EQ(forwarded_client("10.0.0.1", "203.0.113.5", proxy), "203.0.113.5");
+  EXPECT_EQ(forwarded_client("10.0.0.1", "", proxy), "10.0.0.1");
+  // A client's own forged entry stays left of the one the proxy appended.
+  EXPECT_EQ(forwarded_client("10.0.0.1", "1.2.3.4, 203.0.113.5", proxy), "203.0.113.5");
+  // Through two trusted proxies.
+  EXPECT_EQ(forwarded_client("10.0.0.1", "203.0.113.5, 10.0.0.2", two), "203.0.113.5");
+  // Garbage stops the walk at the hop before it.
+  EXPECT_EQ(forwarded_client("10.0.0.1", "nonsense", proxy), "10.0.0.1");
+  EXPECT_EQ(forwarded_client("10.0.0.1", "203.0.113.5, unknown", proxy), "10.0.0.1");
+  EXPECT_EQ(forwarded_client("::ffff:10.0.0.1", " 2001:db8::1 ", proxy), "2001:db8::1");
+  EXPECT_TRUE(is_ip_address("::1"));
+  EXPECT_FALSE(is_ip_address("proxy.example"));
+}
+
+// Issue 49: the queue quota is counted in the transaction that inserts, so
+// that submissions at the same time (threads on their own connections, as
+// API nodes would be) never overfill the queue, as a whole or one
+// client's share.
+TEST(ServerJobStore, QueueQuotaHoldsUnderConcurrentSubmissions) {
+  TempDir dir;
+  auto store = open_sqlite_job_store(dir.path() / "jobs.db");
+  constexpr int kThreads = 8, kEach = 10;
+  auto race = [&](const QueueQuota& quota, const std::string& client) {
+    std::atomic<int> created{0}, refused{0};
+    std::vector<std::thread> threads;
+    for (int t = 0; t < kThreads; ++t) {
+      threads.emplace_back([&] {
+        auto own = open_sqlite_job_store(dir.path() / "jobs.db");
+        for (int i = 0; i < kEach; ++i) {
+          NewJob j = new_job();
+          j.client = client;
+          const SubmitResult r = own->submit(j, std::nullopt, quota);
+          if (r.kind == SubmitResult::Kind::created) ++created;
+          if (r.kind == SubmitResult::Kind::queue_full ||
+              r.kind == SubmitResult::Kind::client_queue_full) {
+            ++refused;
+          }
+        }
+      });
+    }
+    for (auto& t : threads) t.join();
+    return std::make_pair(created.load(), refused.load());
+  };
+  QueueQuota per_client;
+  per_client.max_queued_per_client = 7;
+  per_client.client = "a";
+  EXPECT_EQ(race(per_client, "a"), std::make_pair(7, kThreads * kEach - 7));
+  EXPECT_EQ(store->queued_from("a"), 7);
+  QueueQuota whole;
+  whole.max_queued = 20;
+  EXPECT_EQ(race(whole, "b"), std::make_pair(13, kThreads * kEach - 13));
+  EXPECT_EQ(store->count_by_status().at("accepted"), 20);
+  // A study beyond the quota stores nothing, not even the study.
+  NewStudy study;
+  study.id = new_id();
+  study.name = "s";
+  study.spec_json = "{}";
+  const SubmitResult r = store->submit_study(study, {new_job(), new_job()}, std::nullopt, whole);
+  EXPECT_EQ(r.kind, SubmitResult::Kind::queue_full);
+  EXPECT_EQ(r.queued, 20);
+  EXPECT_FALSE(store->study(study.id));
 }
 
 TEST(ServerHttp, TargetsAreDecodedPerSegment) {

@@ -7,6 +7,7 @@
 
 #include "apps/gearsph/cli.hpp"
 #include "apps/gearsph/serve_images.hpp"
+#include "server/client_identity.hpp"
 #include "server/log.hpp"
 #include "server/router.hpp"
 #ifdef GEARSPH_WITH_FE
@@ -101,6 +102,13 @@ int cmd_serve(Args& args) {
                                   "'");
     }
     c.allowed_hosts.push_back(*v);
+  }
+  while (auto v = args.option("trusted-proxy")) {
+    if (!server::is_ip_address(*v)) {
+      throw std::invalid_argument(
+          "--trusted-proxy takes the IP address of a proxy in front, not '" + *v + "'");
+    }
+    c.trusted_proxies.push_back(*v);
   }
   if (auto v = args.option("web")) c.web_root = *v;
   c.max_attempts = args.integer("max-attempts", c.max_attempts);

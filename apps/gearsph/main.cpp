@@ -93,6 +93,8 @@ usage:
       --allowed-host H     another name to answer to in the Host header: name,
                            name:port or * (repeatable; localhost, 127.0.0.1, [::1]
                            and the bound address with the port are always answered)
+      --trusted-proxy A    a reverse proxy in front (IP address, repeatable): its
+                           X-Forwarded-For names the client (none)
       --data DIR           job store DIR/gearsph.db and job directories DIR/jobs/ (./data)
       --workers N          jobs running at the same time (1)
       --threads-per-job M  most OpenMP threads a job gets (cores / N)
@@ -105,7 +107,8 @@ usage:
                 --max-connections N (512)  --image-cache-mb M (64, rendered images in memory)
                 --build-budget N (2e5: a request builds the scene of at most N particles)
                 --max-queued N (1000 jobs waiting, 503 beyond)
-                --max-queued-per-client N (200 jobs waiting from one address, 429 beyond)
+                --max-queued-per-client N (200 jobs waiting from one client: its
+                session or token, else its address; 429 beyond)
       timeouts [s]: --header-timeout 10  --body-timeout 30  --idle-timeout 60
                 --write-timeout 60  --keepalive 15 (comments on quiet event streams)
                 --build-timeout 20 (a request's sizing and scene build)

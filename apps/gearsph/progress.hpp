@@ -18,6 +18,13 @@ class ProgressPrinter : public RunObserver {
                  static_cast<long long>(p.steps), p.time_s, p.wall_s, p.eta_s, tty_ ? "   " : "\n");
     if (tty_ && p.step >= p.steps) std::fputc('\n', stderr);
   }
+  // A stage after the time loop (the FE check): a line of its own each time
+  // it reports, read back by the Slurm dispatcher (server/slurm_dispatch.hpp).
+  void on_stage(const StageProgress& s) override {
+    if (quiet_) return;
+    std::fprintf(stderr, "[stage %s] %.1f %% done, %.2f s\n", s.stage.c_str(), 100.0 * s.fraction,
+                 s.elapsed_s);
+  }
 
  private:
   bool quiet_;

@@ -1,0 +1,148 @@
+// A job whose FE check failed, in the dashboard (headless Chromium against
+// a real `gearsph serve` on loopback): the job stays successful (its SPH
+// run is complete) and the list and the job view show the red "FE check
+// failed" badge beside its status, with the tool's words in its title
+// (docs/api.md, The FE stage). The server's gmsh is a stand-in script that
+// fails, as in tests/test_fe_server.cpp; ccx is /bin/true. Any console
+// error fails the test.
+//
+//   node tests/browser/fe_failed.test.mjs --gearsph build/gearsph --screenshots build/browser-screenshots
+import { spawn } from "node:child_process";
+import { chmodSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join, resolve } from "node:path";
+import { chromium } from "playwright-core";
+
+function option(name, fallback) {
+  const i = process.argv.indexOf(`--${name}`);
+  return i > 0 ? process.argv[i + 1] : fallback;
+}
+const GEARSPH = resolve(option("gearsph", "build/gearsph"));
+const SHOTS = resolve(option("screenshots", "build/browser-screenshots"));
+const CHROMIUM = option("chromium", "/usr/bin/chromium");
+
+const failures = [];
+function check(condition, message) {
+  if (!condition) {
+    failures.push(message);
+    console.error(`FAIL: ${message}`);
+  } else {
+    console.log(`ok: ${message}`);
+  }
+}
+
+function startServer(dataDir, env) {
+  return new Promise((resolvePromise, reject) => {
+    const child = spawn(GEARSPH, ["serve", "--port", "0", "--data", dataDir, "--threads-per-job", "1"],
+      { stdio: ["ignore", "pipe", "pipe"], env: { ...process.env, ...env } });
+    let out = "", err = "";
+    const timer = setTimeout(() => reject(new Error(`the server did not start:\n${out}${err}`)), 60_000);
+    child.stdout.on("data", (d) => {
+      out += d;
+      const m = out.match(/listening on (http:\/\/[\d.]+:\d+)/);
+      if (m) {
+        clearTimeout(timer);
+        resolvePromise({ child, url: m[1], log: () => out + err });
+      }
+    });
+    child.stderr.on("data", (d) => (err += d));
+    child.on("exit", (code) => {
+      clearTimeout(timer);
+      reject(new Error(`gearsph serve exited with ${code}:\n${out}${err}`));
+    });
+  });
+}
+
+const scratch = mkdtempSync(join(tmpdir(), "gearsph-browser-fe-"));
+mkdirSync(SHOTS, { recursive: true });
+const gmsh = join(scratch, "gmsh");
+writeFileSync(gmsh, "#!/bin/sh\necho 'meshing failed: the stand-in gmsh of the browser test' >&2\nexit 1\n");
+chmodSync(gmsh, 0o755);
+const server = await startServer(join(scratch, "data"), { GEARSPH_GMSH: gmsh, GEARSPH_CCX: "/bin/true" });
+console.log(`server: ${server.url}`);
+
+const context = await chromium.launchPersistentContext(join(scratch, "profile"), {
+  executablePath: CHROMIUM,
+  headless: true,
+  args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+    "--disable-background-networking", "--disable-component-update", "--disable-sync"],
+  viewport: { width: 1280, height: 800 },
+});
+const page = context.pages()[0] || (await context.newPage());
+page.setDefaultTimeout(120_000);
+const consoleErrors = [];
+page.on("console", (msg) => {
+  if (msg.type() === "error") consoleErrors.push(`${msg.text()} (${msg.location().url || "?"})`);
+});
+page.on("pageerror", (e) => consoleErrors.push(`page error: ${e.message}`));
+
+// The badge's colours: the stylesheet's --bad (red text) on --bad-soft.
+async function badgeColours(locator) {
+  return locator.evaluate((el) => {
+    const s = getComputedStyle(el);
+    return { color: s.color, background: s.backgroundColor };
+  });
+}
+const RED = "rgb(180, 35, 24)"; // --bad, #b42318 (web/css/app.css)
+
+let exitCode = 1;
+try {
+  // A static gear check asking for the FE check, through the API; a short
+  // relaxation will do (the check runs after it and fails at its first mesh).
+  const job = {
+    name: "fe-check-fails",
+    scene: { type: "rack_pinion", quasi_static: true, fe_check: true,
+      pinion: { omega_rad_s: 0 }, rack: { velocity_m_s: 0, load_N: 1000 } },
+    time: { end_s: 2e-4 },
+  };
+  const submitted = await page.request.post(`${server.url}/jobs`, { data: job });
+  check(submitted.status() === 201, `the job is accepted (${submitted.status()})`);
+  const id = (await submitted.json()).jobID;
+  const started = Date.now();
+  let final;
+  for (;;) {
+    final = await (await page.request.get(`${server.url}/jobs/${id}`)).json();
+    if (["successful", "failed", "dismissed"].includes(final.status)) break;
+    if (Date.now() - started > 300_000) throw new Error(`job ${id} still ${final.status} after 300 s`);
+    await page.waitForTimeout(500);
+  }
+  check(final.status === "successful", `the job itself is successful (${final.status}: ${final.message})`);
+  check(final.fe_check?.status === "failed", `its fe_check says failed (${JSON.stringify(final.fe_check)})`);
+
+  // The job list: the red badge beside the status.
+  await page.goto(`${server.url}/#/jobs`);
+  const row = page.locator(`tr[data-job="${id}"]`);
+  const listBadge = row.locator('.fe-check[data-fe-check="failed"]');
+  await listBadge.waitFor({ state: "visible" });
+  check((await listBadge.textContent()) === "FE check failed", "the list shows \"FE check failed\"");
+  check(await row.locator(".status.successful").count() === 1, "beside the job's own successful status");
+  const listColours = await badgeColours(listBadge);
+  check(listColours.color === RED, `the list's badge is red (${listColours.color} on ${listColours.background})`);
+  check(/gmsh/.test(await listBadge.getAttribute("title")), "its title gives the tool's words");
+  await page.screenshot({ path: join(SHOTS, "14-fe-check-failed-list.png"), fullPage: true });
+
+  // The job view: the same badge by its status, the message saying so.
+  await page.goto(`${server.url}/#/jobs/${id}`);
+  await page.locator("#job-title").waitFor();
+  const viewBadge = page.locator('#job-title ~ .fe-check[data-fe-check="failed"]').first();
+  await viewBadge.waitFor({ state: "visible" });
+  check((await viewBadge.textContent()) === "FE check failed", "the job view shows \"FE check failed\"");
+  const viewColours = await badgeColours(viewBadge);
+  check(viewColours.color === RED, `the job view's badge is red (${viewColours.color})`);
+  check(/gmsh/.test(await viewBadge.getAttribute("title")), "its title gives the tool's words");
+  await page.screenshot({ path: join(SHOTS, "15-fe-check-failed-job.png"), fullPage: true });
+
+  check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ":\n  " + consoleErrors.join("\n  ") : ""}`);
+  exitCode = failures.length ? 1 : 0;
+} catch (e) {
+  console.error(`FAIL: ${e.stack || e}`);
+  console.error(server.log());
+  await page.screenshot({ path: join(SHOTS, "fe-failed-failure.png"), fullPage: true }).catch(() => {});
+} finally {
+  await context.close();
+  server.child.kill("SIGTERM");
+  await new Promise((r) => server.child.once("exit", r));
+  rmSync(scratch, { recursive: true, force: true });
+}
+if (failures.length) console.error(`${failures.length} check(s) failed`);
+process.exit(exitCode);
