@@ -117,7 +117,7 @@ void initialise(Simulation& sim) {
   // The setup's temporaries (moment matrices, the stable-step estimate's
   // vectors) went back to the heap in pieces the allocator keeps;
   // return them to the system, so that a long run holds only what it uses
-  // (~22 % of the resident memory at 1e6 particles; docs/speed-accuracy.md).
+  // (~22 % of the resident memory at 1e6 particles; docs/speed-accuracy-history.md).
   malloc_trim(0);
 }
 

@@ -66,7 +66,7 @@ PreparedJob prepare_job(const nlohmann::json& job, int threads = 0, int max_thre
 
 // Threads worth giving a scene of `particles`: one per kParticlesPerThread,
 // at least one, at most max_threads. On 2 cores two threads beat one from
-// ~100 particles up when the second core is free (docs/speed-accuracy.md,
+// ~100 particles up when the second core is free (docs/speed-accuracy-history.md,
 // Threads).
 inline constexpr std::size_t kParticlesPerThread = 100;
 int threads_for(std::size_t particles, int max_threads);
