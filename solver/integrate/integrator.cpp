@@ -14,7 +14,6 @@
 #include "solver/physics/stress_rate.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 #include "solver/physics/velocity_gradient.hpp"
-#include "solver/scene/surfaces.hpp"
 
 namespace gearsph::integrate {
 
@@ -40,7 +39,7 @@ double contact_reach(const Simulation& sim) {
   if (sim.contact.model != ContactModel::Surface) return sim.contact.r0_over_dx * dx;
   const bool fitted =
       std::any_of(sim.bodies.begin(), sim.bodies.end(), [](const Body& b) { return b.fitted; });
-  if (!fitted) return (2.0 * scenes::kSurfaceReachOverDx + 1.0) * dx;
+  if (!fitted) return (2.0 * kSurfaceReachOverDx + 1.0) * dx;
   const Particles& p = sim.particles;
   double reach = 0.0;
   for (std::size_t i = 0; i < p.n; ++i) {

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/core/row_chunks.hpp"
 #include "solver/core/simulation.hpp"
-#include "solver/neighbours/row_chunks.hpp"
 #include "solver/physics/external_loads.hpp"
 
 namespace gearsph::integrate {

@@ -5,9 +5,9 @@
 #include <random>
 
 #include "solver/core/passes.hpp"
+#include "solver/core/row_chunks.hpp"
 #include "solver/core/setup_progress.hpp"
 #include "solver/core/simulation.hpp"
-#include "solver/neighbours/row_chunks.hpp"
 #include "solver/physics/artificial_viscosity.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 

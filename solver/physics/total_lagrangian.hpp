@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "solver/core/cache_aligned.hpp"
+#include "solver/core/row_chunks.hpp"
 #include "solver/kernels/kernel.hpp"
-#include "solver/neighbours/row_chunks.hpp"
 #include "solver/physics/crack_face_contact.hpp"
 #include "solver/physics/kernel_correction.hpp"
 
