@@ -111,9 +111,9 @@ export function resultView(root, id) {
     // The image on show, also offered with the other downloads.
     const pngDownload = h("a", { class: "button small", id: "png-download", hidden: times.length === 0 },
       "image.png", h("span", { class: "muted" }, "this frame"));
-    viewer = fieldViewer(id, summary, times, pngDownload);
     const fillet = filletPanel(id, summary, results.files);
     if (fillet) charts.push(fillet);
+    viewer = fieldViewer(id, summary, times, pngDownload);
     put(content,
       h("div", { class: "split" }, viewer.section, summaryPanel(summary, results.files, pngDownload)),
       fillet?.section,
