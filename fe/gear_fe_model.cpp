@@ -13,6 +13,8 @@ namespace gearsph::fe {
 
 namespace {
 
+using geometry::at_arc;
+using geometry::cumulative_arc;
 using geometry::Polygon;
 constexpr double kPi = std::numbers::pi;
 // The generated outline turns by about 1.5 degrees from one sample to the
@@ -22,24 +24,6 @@ constexpr double kCornerRad = 10.0 * kPi / 180.0;
 // Vertices of the outline and points of the fillet curves that are one
 // point (both come from the same samples of the same curves).
 constexpr double kSamePoint = 1e-9;
-
-std::vector<double> cumulative_arc(const std::vector<Point>& line) {
-  std::vector<double> cum(line.size(), 0.0);
-  for (std::size_t k = 1; k < line.size(); ++k) {
-    cum[k] = cum[k - 1] + geometry::norm(line[k] - line[k - 1]);
-  }
-  return cum;
-}
-
-Point at_arc(const std::vector<Point>& line, const std::vector<double>& cum, double s) {
-  s = std::clamp(s, 0.0, cum.back());
-  const auto it = std::upper_bound(cum.begin(), cum.end(), s);
-  const std::size_t k =
-      std::min<std::size_t>(std::max<std::ptrdiff_t>(it - cum.begin(), 1), line.size() - 1);
-  const double len = cum[k] - cum[k - 1];
-  const double f = len > 0.0 ? (s - cum[k - 1]) / len : 0.0;
-  return line[k - 1] + f * (line[k] - line[k - 1]);
-}
 
 // Arc length along the half tooth where it first reaches `radius` (its
 // radius grows monotonically from the root circle to the tip circle; the

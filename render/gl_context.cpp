@@ -22,7 +22,7 @@ namespace {
 // OSMesa (and the GL 1.x entry points it exports) loaded when the first
 // picture is drawn, not when the program starts: it brings LLVM
 // (llvmpipe), whose half a million relocations would slow the start of
-// every process, drawing or not (docs/speed-accuracy.md, "Outputs"). The
+// every process, drawing or not (docs/speed-accuracy-history.md, "Outputs"). The
 // same library and functions as linking it.
 struct OsMesaApi {
   decltype(&::OSMesaCreateContextAttribs) OSMesaCreateContextAttribs = nullptr;

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "results/h5_series.hpp"
-#include "solver/run/history.hpp"
+#include "solver/diagnostics/history.hpp"
 
 namespace gearsph::results {
 

@@ -30,7 +30,7 @@ class XdmfWriter {
   // Writes the first time, then at most once a second and at most one part
   // in 50 of the wall time (the document grows with the frames: thousands
   // take milliseconds to write). Rewriting it at every frame cost 5 % of a
-  // short run (docs/speed-accuracy.md, "Outputs"); a viewer of a running
+  // short run (docs/speed-accuracy-history.md, "Outputs"); a viewer of a running
   // job sees frames at most a second late. The writer calls write() at the
   // end of the run to catch up.
   void write_throttled();

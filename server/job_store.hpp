@@ -356,9 +356,6 @@ std::unique_ptr<JobStore> open_sqlite_job_store(const std::filesystem::path& fil
 // its schema created or migrated under an advisory lock. Throws if this
 // build has no PostgreSQL client library or the server cannot be reached.
 std::unique_ptr<JobStore> open_postgres_job_store(const std::string& uri);
-// A store named on the command line (store_location.hpp): PostgreSQL by
-// its URI or libpq's key=value form, or an SQLite file (sqlite:PATH or a
-// plain path); anything else is refused (std::invalid_argument).
-std::unique_ptr<JobStore> open_job_store(const std::string& location);
+// A store named on the command line: open_job_store.hpp.
 
 }  // namespace gearsph::server

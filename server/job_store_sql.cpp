@@ -12,7 +12,6 @@
 
 #include "server/job_store.hpp"
 #include "server/sql.hpp"
-#include "server/store_location.hpp"
 
 namespace gearsph::server {
 
@@ -721,12 +720,6 @@ std::string new_claim_token() {
   std::snprintf(text, sizeof text, "%016llx%016llx", static_cast<unsigned long long>(bits()),
                 static_cast<unsigned long long>(bits()));
   return text;
-}
-
-std::unique_ptr<JobStore> open_job_store(const std::string& location) {
-  const StoreLocation where = parse_store_location(location);
-  if (where.engine == StoreEngine::postgresql) return open_postgres_job_store(where.target);
-  return open_sqlite_job_store(where.target);
 }
 
 }  // namespace gearsph::server

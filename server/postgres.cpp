@@ -145,23 +145,4 @@ Result Connection::exec(const std::string& sql, const std::vector<Param>& params
   throw error;
 }
 
-Pool::Lease::~Lease() {
-  if (c_ && c_->ok()) {
-    std::lock_guard<std::mutex> lock(pool_->mutex_);
-    pool_->idle_.push_back(std::move(c_));
-  }
-}
-
-Pool::Lease Pool::acquire() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    while (!idle_.empty()) {
-      auto c = std::move(idle_.back());
-      idle_.pop_back();
-      if (c->ok()) return Lease(*this, std::move(c));
-    }
-  }
-  return Lease(*this, std::make_unique<Connection>(uri_));
-}
-
 }  // namespace gearsph::server::postgres

@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "server/connection_pool.hpp"
+
 struct pg_conn;
 struct pg_result;
 
@@ -70,30 +72,6 @@ class Connection {
   pg_conn* c_ = nullptr;
 };
 
-class Pool {
- public:
-  explicit Pool(std::string uri) : uri_(std::move(uri)) {}
-
-  class Lease {
-   public:
-    Lease(Pool& pool, std::unique_ptr<Connection> c) : pool_(&pool), c_(std::move(c)) {}
-    Lease(Lease&&) = default;
-    Lease& operator=(Lease&&) = delete;
-    ~Lease();
-    Connection& operator*() { return *c_; }
-    Connection* operator->() { return c_.get(); }
-
-   private:
-    Pool* pool_;
-    std::unique_ptr<Connection> c_;
-  };
-
-  Lease acquire();
-
- private:
-  std::string uri_;
-  std::mutex mutex_;
-  std::vector<std::unique_ptr<Connection>> idle_;
-};
+using Pool = ConnectionPool<Connection, std::string>;
 
 }  // namespace gearsph::server::postgres

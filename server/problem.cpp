@@ -1,5 +1,7 @@
 #include "server/problem.hpp"
 
+#include "server/documents.hpp"
+
 namespace gearsph::server::problem {
 
 StringResponse make(const Problem& p) {
@@ -20,6 +22,36 @@ StringResponse plain(http::status status, const std::string& detail, const std::
   p.status = status;
   p.detail = detail;
   p.instance = instance;
+  return make(p);
+}
+
+StringResponse no_such_job(const Request& req) {
+  Problem p;
+  p.status = http::status::not_found;
+  p.type = kNoSuchJob;
+  p.title = "No such job";
+  p.detail = "there is no job " + (req.params.count("id") ? req.param("id") : std::string());
+  p.instance = req.path;
+  return make(p);
+}
+
+StringResponse no_such_process(const Request& req) {
+  Problem p;
+  p.status = http::status::not_found;
+  p.type = kNoSuchProcess;
+  p.title = "No such process";
+  p.detail = "the only process is " + std::string(kProcessId);
+  p.instance = req.path;
+  return make(p);
+}
+
+StringResponse invalid_parameter(const Request& req, const std::string& detail) {
+  Problem p;
+  p.status = http::status::bad_request;
+  p.type = kInvalidParameter;
+  p.title = "Invalid query parameter";
+  p.detail = detail;
+  p.instance = req.path;
   return make(p);
 }
 

@@ -43,6 +43,14 @@ struct Problem {
 StringResponse make(const Problem& p);
 // about:blank with the status phrase as title.
 StringResponse plain(http::status status, const std::string& detail, const std::string& instance);
+// 404, OGC's no-such-job: there is no job with the request's `id` (or the
+// request names none).
+StringResponse no_such_job(const Request& req);
+// 404, OGC's no-such-process: the service has one process, kProcessId.
+StringResponse no_such_process(const Request& req);
+// 400, invalid-parameter: a query parameter outside its range, `detail`
+// saying what is allowed.
+StringResponse invalid_parameter(const Request& req, const std::string& detail);
 // `errors: [{pointer, detail}]` from the issues of an invalid job; pointers
 // are prefixed with `prefix` (e.g. "/inputs/job" for an OGC execute request).
 nlohmann::json errors(const std::vector<JobIssue>& issues, const std::string& prefix = "");

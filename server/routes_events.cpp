@@ -37,15 +37,7 @@ Response job_events(Services& s, Request& req) {
   // the read has a later id and is streamed.
   const std::uint64_t now = s.hub.last_id();
   const auto job = is_id(id) ? s.store.job(id) : std::nullopt;
-  if (!job) {
-    problem::Problem p;
-    p.status = http::status::not_found;
-    p.type = problem::kNoSuchJob;
-    p.title = "No such job";
-    p.detail = "there is no job " + id;
-    p.instance = req.path;
-    return problem::make(p);
-  }
+  if (!job) return problem::no_such_job(req);
   EventStream es = start(req, id);
   const bool finished = is_terminal_status(job->status);
   if (es.last_event_id) {

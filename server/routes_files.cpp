@@ -12,26 +12,6 @@ namespace gearsph::server::routes {
 
 namespace {
 
-StringResponse no_such_job(const Request& req) {
-  problem::Problem p;
-  p.status = http::status::not_found;
-  p.type = problem::kNoSuchJob;
-  p.title = "No such job";
-  p.detail = "there is no job " + req.param("id");
-  p.instance = req.path;
-  return problem::make(p);
-}
-
-StringResponse bad_parameter(const Request& req, const std::string& detail) {
-  problem::Problem p;
-  p.status = http::status::bad_request;
-  p.type = problem::kInvalidParameter;
-  p.title = "Invalid parameter";
-  p.detail = detail;
-  p.instance = req.path;
-  return problem::make(p);
-}
-
 std::optional<JobRecord> find_job(Services& s, const Request& req) {
   if (!is_id(req.param("id"))) return std::nullopt;
   return s.store.job(req.param("id"));
@@ -75,7 +55,7 @@ std::string exact_number(double v) {
 
 Response files(Services& s, Request& req) {
   const auto record = find_job(s, req);
-  if (!record) return no_such_job(req);
+  if (!record) return problem::no_such_job(req);
   if (record->status == JobStatus::dismissed) return dismissed(req, *record);
   nlohmann::json list = nlohmann::json::array();
   for (const FileEntry& f : list_files(s.job_dir(*record))) {
@@ -89,7 +69,7 @@ Response files(Services& s, Request& req) {
 
 Response file(Services& s, Request& req) {
   const auto record = find_job(s, req);
-  if (!record) return no_such_job(req);
+  if (!record) return problem::no_such_job(req);
   if (record->status == JobStatus::dismissed) return dismissed(req, *record);
   const std::string& name = req.param("name");
   // Only a name the directory listing shows: no "..", no "/", no links.
@@ -108,7 +88,7 @@ Response file(Services& s, Request& req) {
 
 Response image(Services& s, Request& req) {
   const auto record = find_job(s, req);
-  if (!record) return no_such_job(req);
+  if (!record) return problem::no_such_job(req);
   const std::string& image = req.param("image");
   const std::string suffix = ".png";
   if (image.size() <= suffix.size() ||
@@ -125,7 +105,7 @@ Response image(Services& s, Request& req) {
     std::int64_t frame = -1;
     const auto [end, ec] = std::from_chars(f->data(), f->data() + f->size(), frame);
     if (ec != std::errc() || end != f->data() + f->size() || frame < 0) {
-      return bad_parameter(req, "frame is a whole number, 0 or more");
+      return problem::invalid_parameter(req, "frame is a whole number, 0 or more");
     }
     ir.frame = frame;
     cache += "?frame=" + std::to_string(frame);
@@ -146,7 +126,8 @@ Response image(Services& s, Request& req) {
       start = comma + 1;
     }
     if (!ok || !(box[0] < box[2]) || !(box[1] < box[3])) {
-      return bad_parameter(req, "zoom is x0,y0,x1,y1 in metres with x0 < x1 and y0 < y1");
+      return problem::invalid_parameter(req,
+                                        "zoom is x0,y0,x1,y1 in metres with x0 < x1 and y0 < y1");
     }
     ir.zoom_m = box;
     cache += "&zoom=" + short_number(box[0]) + "," + short_number(box[1]) + "," +
@@ -159,7 +140,7 @@ Response image(Services& s, Request& req) {
                         ? std::nullopt
                         : finite_number(std::string_view(*r).substr(comma + 1));
     if (!lo || !hi || !(*lo < *hi)) {
-      return bad_parameter(req, "range is lo,hi in the field's SI unit with lo < hi");
+      return problem::invalid_parameter(req, "range is lo,hi in the field's SI unit with lo < hi");
     }
     ir.range = std::array<double, 2>{*lo, *hi};
     // Full precision: two ranges that differ are two images.

@@ -16,26 +16,6 @@ namespace gearsph::server::routes {
 
 namespace {
 
-StringResponse no_such_job(const Request& req) {
-  problem::Problem p;
-  p.status = http::status::not_found;
-  p.type = problem::kNoSuchJob;
-  p.title = "No such job";
-  p.detail = "there is no job " + (req.params.count("id") ? req.param("id") : std::string());
-  p.instance = req.path;
-  return problem::make(p);
-}
-
-StringResponse bad_parameter(const Request& req, const std::string& detail) {
-  problem::Problem p;
-  p.status = http::status::bad_request;
-  p.type = problem::kInvalidParameter;
-  p.title = "Invalid query parameter";
-  p.detail = detail;
-  p.instance = req.path;
-  return problem::make(p);
-}
-
 std::optional<std::int64_t> whole_number(const std::string& s) {
   std::int64_t v = 0;
   const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
@@ -230,15 +210,8 @@ const nlohmann::json* execute_request_job(const nlohmann::json& request, std::st
 }  // namespace
 
 Response execute(Services& s, Request& req) {
-  if (req.params.count("process") && req.param("process") != kProcessId) {
-    problem::Problem p;
-    p.status = http::status::not_found;
-    p.type = problem::kNoSuchProcess;
-    p.title = "No such process";
-    p.detail = "the only process is " + std::string(kProcessId);
-    p.instance = req.path;
-    return problem::make(p);
-  }
+  if (req.params.count("process") && req.param("process") != kProcessId)
+    return problem::no_such_process(req);
   auto body = read_json_body(req);
   if (auto* error = std::get_if<StringResponse>(&body)) return std::move(*error);
   const nlohmann::json& request = std::get<nlohmann::json>(body);
@@ -299,14 +272,15 @@ Response list_jobs(Services& s, Request& req) {
                                                  "minDuration", "maxDuration", "f"};
   for (const auto& [name, value] : req.query) {
     if (std::find(known.begin(), known.end(), name) == known.end()) {
-      return bad_parameter(req, "'" + name +
-                                    "' is not a parameter of the job list; its parameters are "
-                                    "status, limit, offset, processID, type, datetime, "
-                                    "minDuration, maxDuration and f");
+      return problem::invalid_parameter(
+          req, "'" + name +
+                   "' is not a parameter of the job list; its parameters are "
+                   "status, limit, offset, processID, type, datetime, "
+                   "minDuration, maxDuration and f");
     }
   }
   if (auto f = req.query_value("f"); f && *f != "json") {
-    return bad_parameter(req, "the job list is JSON: f=json, not f=" + *f);
+    return problem::invalid_parameter(req, "the job list is JSON: f=json, not f=" + *f);
   }
   JobQuery q;
   // Values of a parameter given several times or as a comma list.
@@ -327,21 +301,22 @@ Response list_jobs(Services& s, Request& req) {
   for (const std::string& one : values_of("status")) {
     const auto status = parse_job_status(one);
     if (!status) {
-      return bad_parameter(req, "status '" + one +
-                                    "' is not one of accepted, running, successful, failed, "
-                                    "dismissed");
+      return problem::invalid_parameter(
+          req, "status '" + one +
+                   "' is not one of accepted, running, successful, failed, "
+                   "dismissed");
     }
     q.statuses.push_back(*status);
   }
   if (auto v = req.query_value("limit")) {
     const auto n = whole_number(*v);
     if (!n || *n < 1 || *n > 1000)
-      return bad_parameter(req, "limit is a whole number from 1 to 1000");
+      return problem::invalid_parameter(req, "limit is a whole number from 1 to 1000");
     q.limit = *n;
   }
   if (auto v = req.query_value("offset")) {
     const auto n = whole_number(*v);
-    if (!n || *n < 0) return bad_parameter(req, "offset is a whole number, 0 or more");
+    if (!n || *n < 0) return problem::invalid_parameter(req, "offset is a whole number, 0 or more");
     q.offset = *n;
   }
   // Every job is of the one process, of type "process": another asks for none.
@@ -354,10 +329,11 @@ Response list_jobs(Services& s, Request& req) {
   if (auto v = req.query_value("datetime")) {
     const auto interval = parse_datetime_interval(*v);
     if (!interval) {
-      return bad_parameter(req,
-                           "datetime is an RFC 3339 date-time (2024-05-01T09:30:00Z), a "
-                           "date, or an interval of them with .. for an open end "
-                           "(2024-05-01/.., ../2024-05-02T12:00:00Z)");
+      return problem::invalid_parameter(
+          req,
+          "datetime is an RFC 3339 date-time (2024-05-01T09:30:00Z), a "
+          "date, or an interval of them with .. for an open end "
+          "(2024-05-01/.., ../2024-05-02T12:00:00Z)");
     }
     q.created_from = interval->first;
     q.created_to = interval->second;
@@ -365,7 +341,8 @@ Response list_jobs(Services& s, Request& req) {
   for (const char* name : {"minDuration", "maxDuration"}) {
     if (auto v = req.query_value(name)) {
       const auto seconds = seconds_number(*v);
-      if (!seconds) return bad_parameter(req, std::string(name) + " is seconds, 0 or more");
+      if (!seconds)
+        return problem::invalid_parameter(req, std::string(name) + " is seconds, 0 or more");
       (std::string(name) == "minDuration" ? q.min_wall_s : q.max_wall_s) = *seconds;
     }
   }
@@ -400,17 +377,17 @@ Response list_jobs(Services& s, Request& req) {
 }
 
 Response job(Services& s, Request& req) {
-  if (!is_id(req.param("id"))) return no_such_job(req);
+  if (!is_id(req.param("id"))) return problem::no_such_job(req);
   const auto record = s.store.job(req.param("id"));
-  if (!record) return no_such_job(req);
+  if (!record) return problem::no_such_job(req);
   return json_response(http::status::ok, s.status_of(*record));
 }
 
 Response dismiss_job(Services& s, Request& req) {
-  if (!is_id(req.param("id"))) return no_such_job(req);
+  if (!is_id(req.param("id"))) return problem::no_such_job(req);
   const std::string& id = req.param("id");
   const auto before = s.store.dismiss(id);
-  if (!before) return no_such_job(req);
+  if (!before) return problem::no_such_job(req);
   s.images.drop_job(id);
   if (before->status == JobStatus::running) {
     // The worker stops at its next check and then deletes what the run wrote.
@@ -424,15 +401,15 @@ Response dismiss_job(Services& s, Request& req) {
     if (!s.workers.live(id)) discard_attempts(s.jobs_dir, id);
   }
   const auto record = s.store.job(id);
-  if (!record) return no_such_job(req);
+  if (!record) return problem::no_such_job(req);
   if (before->status != JobStatus::dismissed) s.publish_status(*record);
   return json_response(http::status::ok, s.status_of(*record));
 }
 
 Response results(Services& s, Request& req) {
-  if (!is_id(req.param("id"))) return no_such_job(req);
+  if (!is_id(req.param("id"))) return problem::no_such_job(req);
   const auto record = s.store.job(req.param("id"));
-  if (!record) return no_such_job(req);
+  if (!record) return problem::no_such_job(req);
   const std::string& id = record->id;
   const auto dir = s.job_dir(*record);
   const auto summary = read_json_file(dir / "summary.json");

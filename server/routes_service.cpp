@@ -130,15 +130,7 @@ Response processes(Services&, Request&) {
 }
 
 Response process(Services&, Request& req) {
-  if (req.param("process") != kProcessId) {
-    problem::Problem p;
-    p.status = http::status::not_found;
-    p.type = problem::kNoSuchProcess;
-    p.title = "No such process";
-    p.detail = "the only process is " + std::string(kProcessId);
-    p.instance = req.path;
-    return problem::make(p);
-  }
+  if (req.param("process") != kProcessId) return problem::no_such_process(req);
   nlohmann::json d = process_summary();
   d["inputs"] = {
       {"job",

@@ -14,6 +14,7 @@
 #include "server/attempt_dirs.hpp"
 #include "server/log.hpp"
 #include "server/metrics.hpp"
+#include "server/open_job_store.hpp"
 #include "server/slurm_dispatch.hpp"
 
 namespace gearsph::server {

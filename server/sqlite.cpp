@@ -120,23 +120,4 @@ std::int64_t Connection::changes() const {
   return sqlite3_changes64(db_);
 }
 
-Pool::Lease::~Lease() {
-  if (c_) {
-    std::lock_guard<std::mutex> lock(pool_->mutex_);
-    pool_->idle_.push_back(std::move(c_));
-  }
-}
-
-Pool::Lease Pool::acquire() {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (!idle_.empty()) {
-      auto c = std::move(idle_.back());
-      idle_.pop_back();
-      return Lease(*this, std::move(c));
-    }
-  }
-  return Lease(*this, std::make_unique<Connection>(file_));
-}
-
 }  // namespace gearsph::server::sqlite

@@ -11,6 +11,8 @@
 #include <string_view>
 #include <vector>
 
+#include "server/connection_pool.hpp"
+
 struct sqlite3;
 struct sqlite3_stmt;
 
@@ -75,30 +77,6 @@ class Connection {
 
 // Connections are opened on demand and reused; one thread holds a
 // connection at a time (SQLite's WAL lets readers run beside the writer).
-class Pool {
- public:
-  explicit Pool(std::filesystem::path file) : file_(std::move(file)) {}
-
-  class Lease {
-   public:
-    Lease(Pool& pool, std::unique_ptr<Connection> c) : pool_(&pool), c_(std::move(c)) {}
-    Lease(Lease&&) = default;
-    Lease& operator=(Lease&&) = delete;
-    ~Lease();
-    Connection& operator*() { return *c_; }
-    Connection* operator->() { return c_.get(); }
-
-   private:
-    Pool* pool_;
-    std::unique_ptr<Connection> c_;
-  };
-
-  Lease acquire();
-
- private:
-  std::filesystem::path file_;
-  std::mutex mutex_;
-  std::vector<std::unique_ptr<Connection>> idle_;
-};
+using Pool = ConnectionPool<Connection, std::filesystem::path>;
 
 }  // namespace gearsph::server::sqlite

@@ -13,6 +13,7 @@
 #include "server/router.hpp"
 #include "solver/job/job.hpp"
 #include "solver/job/job_size.hpp"
+#include "solver/job/json_schema.hpp"
 
 namespace gearsph::server {
 
@@ -43,21 +44,6 @@ bool nested_too_deep(std::string_view text) {
     }
   }
   return false;
-}
-
-// RFC 6901: '~' and '/' in a key are written ~0 and ~1.
-std::string pointer_token(const std::string& key) {
-  std::string out;
-  for (const char c : key) {
-    if (c == '~') {
-      out += "~0";
-    } else if (c == '/') {
-      out += "~1";
-    } else {
-      out += c;
-    }
-  }
-  return out;
 }
 
 // Follows the parse and, when it fails, knows the JSON pointer of the value
@@ -99,7 +85,7 @@ class PointerAtError : public nlohmann::json_sax<nlohmann::json> {
                    const nlohmann::detail::exception&) override {
     for (const Frame& f : stack_) {
       pointer.push_back('/');
-      pointer.append(f.array ? std::to_string(f.index) : pointer_token(f.key));
+      pointer.append(f.array ? std::to_string(f.index) : jsonschema::escape_pointer_token(f.key));
     }
     token = last_token;
     return false;

@@ -89,6 +89,26 @@ const Case kCases[] = {{12, 4e-3, 20.0, 0.0},  {12, 4e-3, 20.0, 0.3}, {20, 2e-3,
                        {30, 1e-3, 22.5, 0.5},  {8, 4e-3, 20.0, 0.0},  {17, 3e-3, 14.5, 0.1},
                        {40, 5e-3, 20.0, -0.4}, {10, 6e-3, 22.5, 0.25}};
 
+// Arc length along a polyline, as the fillets and the FE model walk their
+// outlines: an L of legs 3 and 4 (a repeated vertex adds no length).
+TEST(GearGeometry, PointsAtArcLengthAlongAPolyline) {
+  const std::vector<Point> line = {{0, 0}, {3, 0}, {3, 0}, {3, 4}};
+  const std::vector<double> cum = cumulative_arc(line);
+  ASSERT_EQ(cum.size(), line.size());
+  EXPECT_DOUBLE_EQ(cum[1], 3.0);
+  EXPECT_DOUBLE_EQ(cum[2], 3.0);
+  EXPECT_DOUBLE_EQ(cum[3], 7.0);
+  const Point mid = at_arc(line, cum, 1.5);
+  EXPECT_DOUBLE_EQ(mid.x, 1.5);
+  EXPECT_DOUBLE_EQ(mid.y, 0.0);
+  const Point up = at_arc(line, cum, 5.0);  // 2 up the second leg
+  EXPECT_DOUBLE_EQ(up.x, 3.0);
+  EXPECT_DOUBLE_EQ(up.y, 2.0);
+  // Beyond either end: the end.
+  EXPECT_DOUBLE_EQ(at_arc(line, cum, -1.0).x, 0.0);
+  EXPECT_DOUBLE_EQ(at_arc(line, cum, 9.0).y, 4.0);
+}
+
 TEST(GearGeometry, RadiiFollowTheFormulasAndTheOutline) {
   for (const Case& c : kCases) {
     SCOPED_TRACE("z=" + std::to_string(c.z) + " x=" + std::to_string(c.x));

@@ -77,6 +77,43 @@ std::pair<std::string, int> cli_output(const std::string& args) {
   return {out, WEXITSTATUS(status)};
 }
 
+// What `gearsph ARGS` writes to stderr, and its exit status.
+std::pair<std::string, int> cli_errors(const std::string& args) {
+  const std::string cmd = std::string(GEARSPH_BINARY) + " " + args + " 2>&1 >/dev/null";
+  std::string out;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return {"", -1};
+  char buf[4096];
+  for (std::size_t got; (got = std::fread(buf, 1, sizeof buf, pipe)) > 0;) out.append(buf, got);
+  const int status = pclose(pipe);
+  return {out, WEXITSTATUS(status)};
+}
+
+// Every command's seconds options are read by one parser; each keeps its
+// own range and says it, before anything starts.
+TEST(Cli, SecondsOptionsRefuseValuesOutsideTheirRange) {
+  const fs::path dir = fs::temp_directory_path() / "gearsph_cli_seconds";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string worker = "worker --store sqlite:" + (dir / "jobs.db").string() + " --results " +
+                             (dir / "jobs").string();
+  const std::pair<std::string, std::string> cases[] = {
+      {worker + " --lease 0", "--lease takes seconds (> 0), not '0'"},
+      {worker + " --poll x", "--poll takes seconds (> 0), not 'x'"},
+      {worker + " --job-grace 90000", "--job-grace takes seconds (0 to 86400), not '90000'"},
+      {"serve --data " + (dir / "data").string() + " --idle-timeout 0",
+       "--idle-timeout takes seconds (> 0), not '0'"},
+      {"submit --server http://127.0.0.1:9 --retry-for x " + (dir / "job.json").string(),
+       "--retry-for takes seconds (0 or more), not 'x'"},
+  };
+  for (const auto& [args, message] : cases) {
+    const auto [err, status] = cli_errors(args);
+    EXPECT_EQ(status, 2) << args << "\n" << err;
+    EXPECT_NE(err.find(message), std::string::npos) << args << "\n" << err;
+  }
+  fs::remove_all(dir);
+}
+
 TEST(Cli, HelpAfterACommandPrintsThatCommandsUsage) {
   const auto [run, run_status] = cli_output("run --help");
   EXPECT_EQ(run_status, 0);

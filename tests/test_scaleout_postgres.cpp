@@ -13,6 +13,7 @@
 
 #include "server/documents.hpp"
 #include "server/job_store.hpp"
+#include "server/open_job_store.hpp"
 #include "tests/scaleout/support.hpp"
 
 namespace gearsph::server::testing {

@@ -259,6 +259,23 @@ TEST_F(ServerApi, NotFoundAndMethodNotAllowed) {
   }
   EXPECT_EQ(c.get("/jobs/" + unknown).json().at("type"),
             "http://www.opengis.net/def/exceptions/ogcapi-processes-1/1.0/no-such-job");
+  // The job's own routes answer alike: its status, files and events.
+  for (const std::string& t :
+       std::vector<std::string>{"/jobs/" + unknown, "/jobs/" + unknown + "/files/summary.json",
+                                "/jobs/" + unknown + "/events"}) {
+    const json p = c.get(t).json();
+    EXPECT_EQ(p.at("type"),
+              "http://www.opengis.net/def/exceptions/ogcapi-processes-1/1.0/no-such-job")
+        << t;
+    EXPECT_EQ(p.at("title"), "No such job") << t;
+    EXPECT_EQ(p.at("detail"), "there is no job " + unknown) << t;
+  }
+  // So do the process's: its description and its execution.
+  const json described = c.get("/processes/no-such").json();
+  const json executed = c.post_json("/processes/no-such/execution", "{}").json();
+  EXPECT_EQ(described.at("title"), "No such process");
+  EXPECT_EQ(executed.at("title"), "No such process");
+  EXPECT_EQ(described.at("detail"), executed.at("detail"));
   EXPECT_EQ(c.request("DELETE", "/jobs/" + unknown).status, 404u);
 
   const ClientResponse put = c.request("PUT", "/jobs", "{}");

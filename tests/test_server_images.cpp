@@ -147,6 +147,12 @@ TEST_F(ServerImages, RefusalsNameWhatExists) {
   EXPECT_NE(unknown.json().at("detail").get<std::string>().find("von_mises"), std::string::npos)
       << unknown.body;
   EXPECT_EQ(c.get(image("von_mises.png?frame=x")).status, 400u);
+  // A bad query parameter reads alike here and on the job list.
+  const json bad_frame = c.get(image("von_mises.png?frame=x")).json();
+  const json bad_limit = c.get("/jobs?limit=0").json();
+  EXPECT_EQ(bad_frame.at("type"), bad_limit.at("type"));
+  EXPECT_EQ(bad_frame.at("title"), "Invalid query parameter");
+  EXPECT_EQ(bad_limit.at("title"), "Invalid query parameter");
   EXPECT_EQ(c.get(image("von_mises.png?zoom=1,1,0,0")).status, 400u);
   EXPECT_EQ(c.get(image("a..b.png")).status, 404u);
   EXPECT_EQ(c.get("/jobs/00000000-0000-0000-0000-000000000000/images/von_mises.png").status, 404u);

@@ -40,17 +40,22 @@ bool Args::flag(const std::string& name) {
   return false;
 }
 
-double Args::grace_seconds(const std::string& name) {
+double Args::seconds(const std::string& name, double fallback, const SecondsRange& range) {
   const auto v = option(name);
-  if (!v) return 0.0;
+  if (!v) return fallback;
   try {
     std::size_t used = 0;
     const double s = std::stod(*v, &used);
-    if (used != v->size() || !(s >= 0) || s > 86400) throw std::invalid_argument("");
-    return s;
+    const bool above_lo = range.lo_open ? s > range.lo : s >= range.lo;
+    if (used == v->size() && above_lo && s <= range.hi) return s;
   } catch (const std::exception&) {
-    throw std::invalid_argument("--" + name + " takes seconds (0 to 86400), not '" + *v + "'");
   }
+  throw std::invalid_argument("--" + name + " takes seconds (" + range.allowed + "), not '" + *v +
+                              "'");
+}
+
+double Args::grace_seconds(const std::string& name) {
+  return seconds(name, 0.0, SecondsRange{});
 }
 
 int Args::integer(const std::string& name, int fallback) {

@@ -797,7 +797,7 @@ int pareto_main(Args& args) {
 
 // `gearsph bench [options]` or `gearsph bench pareto [options]`.
 int cmd_bench(int argc, char** argv) {
-  // The wait policy main() chose, or the caller's (docs/speed-accuracy.md).
+  // The wait policy main() chose, or the caller's (docs/speed-accuracy-history.md).
   const char* policy = std::getenv("OMP_WAIT_POLICY");
   const char* spin = std::getenv("GOMP_SPINCOUNT");
   std::printf("OpenMP wait: OMP_WAIT_POLICY=%s GOMP_SPINCOUNT=%s\n", policy ? policy : "(unset)",

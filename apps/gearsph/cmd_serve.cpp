@@ -20,18 +20,11 @@ namespace gearsph::cli {
 
 namespace {
 
+// A positive number of seconds, up to a day.
 std::chrono::milliseconds seconds_option(Args& args, const std::string& name,
                                          std::chrono::milliseconds fallback) {
-  const auto v = args.option(name);
-  if (!v) return fallback;
-  try {
-    std::size_t used = 0;
-    const double s = std::stod(*v, &used);
-    if (used != v->size() || !(s > 0) || s > 86400) throw std::invalid_argument("");
-    return std::chrono::milliseconds(static_cast<long long>(s * 1000.0));
-  } catch (const std::exception&) {
-    throw std::invalid_argument("--" + name + " takes seconds (> 0), not '" + *v + "'");
-  }
+  const double s = args.seconds(name, -1.0, {0.0, true, 86400.0, "> 0"});
+  return s < 0 ? fallback : std::chrono::milliseconds(static_cast<long long>(s * 1000.0));
 }
 
 double number_option(Args& args, const std::string& name, double fallback) {

@@ -185,18 +185,6 @@ void download_results(HttpClient& client, const std::string& base, const std::st
   std::fprintf(stderr, "gearsph submit: results in %s\n", out.string().c_str());
 }
 
-double seconds_value(const std::optional<std::string>& v, const std::string& name,
-                     double fallback) {
-  if (!v) return fallback;
-  try {
-    std::size_t used = 0;
-    const double s = std::stod(*v, &used);
-    if (used == v->size() && s >= 0 && s <= 30 * 86400) return s;
-  } catch (const std::exception&) {
-  }
-  throw std::invalid_argument("--" + name + " takes seconds (0 or more), not '" + *v + "'");
-}
-
 }  // namespace
 
 int cmd_submit(Args& args) {
@@ -204,7 +192,8 @@ int cmd_submit(Args& args) {
   const auto out = args.option("out");
   const auto token_file = args.option("token-file");
   const auto key = args.option("idempotency-key");
-  const double retry_for = seconds_value(args.option("retry-for"), "retry-for", kDefaultRetryFor_s);
+  const double retry_for =
+      args.seconds("retry-for", kDefaultRetryFor_s, {0.0, false, 30 * 86400.0, "0 or more"});
   const bool wait = args.flag("wait") || out.has_value();
   const auto pos = args.positional();
   if (pos.size() != 1 || !url) {

@@ -17,6 +17,7 @@
 #include "server/event_hub.hpp"
 #include "server/job_store.hpp"
 #include "server/log.hpp"
+#include "server/open_job_store.hpp"
 #include "server/store_location.hpp"
 #include "server/worker_pool.hpp"
 
@@ -24,18 +25,8 @@ namespace gearsph::cli {
 
 namespace {
 
-double seconds_value(Args& args, const std::string& name, double fallback) {
-  const auto v = args.option(name);
-  if (!v) return fallback;
-  try {
-    std::size_t used = 0;
-    const double s = std::stod(*v, &used);
-    if (used != v->size() || !(s > 0) || s > 86400) throw std::invalid_argument("");
-    return s;
-  } catch (const std::exception&) {
-    throw std::invalid_argument("--" + name + " takes seconds (> 0), not '" + *v + "'");
-  }
-}
+// A positive number of seconds, up to a day.
+constexpr SecondsRange kPositiveSeconds{0.0, true, 86400.0, "> 0"};
 
 }  // namespace
 
@@ -57,8 +48,8 @@ int cmd_worker(Args& args) {
   o.workers = args.integer("workers", 1);
   o.threads_per_job = args.integer("threads-per-job", 0);
   o.max_attempts = args.integer("max-attempts", o.max_attempts);
-  const double lease_s = seconds_value(args, "lease", 30.0);
-  const double poll_s = seconds_value(args, "poll", 0.5);
+  const double lease_s = args.seconds("lease", 30.0, kPositiveSeconds);
+  const double poll_s = args.seconds("poll", 0.5, kPositiveSeconds);
   const double grace_s = args.grace_seconds("job-grace");
   if (!args.positional().empty()) throw std::invalid_argument("worker takes no file arguments");
   if (o.workers < 1 || o.threads_per_job < 0 || o.max_attempts < 1) {

@@ -202,10 +202,10 @@ namespace {
 // A spin of 1,000 rounds, then sleep, is close to the fastest alone and,
 // unlike a long spin, does not starve a run it shares the cores with. A
 // policy the caller set (OMP_WAIT_POLICY, GOMP_SPINCOUNT) is kept.
-// Measurements: docs/speed-accuracy.md, "Threads".
+// Measurements: docs/speed-accuracy-history.md, "Threads".
 // A command told to run on one thread (`--threads 1`) never waits at a
 // barrier, so it keeps its first image: the second start was 5 % of a short
-// plate run (docs/speed-accuracy.md, "Outputs").
+// plate run (docs/speed-accuracy-history.md, "Outputs").
 bool one_thread_asked(int argc, char** argv) {
   for (int k = 1; k + 1 < argc; ++k) {
     if (std::strcmp(argv[k], "--threads") == 0) return std::strcmp(argv[k + 1], "1") == 0;
@@ -233,7 +233,7 @@ int main(int argc, char** argv) {
   // holes that raise a later scene's peak memory; a fixed threshold also
   // stops glibc raising it after the first such free. Not lower: zlib's
   // buffers for each chunk HDF5 compresses would then be mapped and unmapped
-  // every time. See docs/speed-accuracy.md, "Outputs".
+  // every time. See docs/speed-accuracy-history.md, "Outputs".
   mallopt(M_MMAP_THRESHOLD, static_cast<int>(gearsph::kMapFrom));
   // And the heap's top is kept, up to 64 MiB, not handed back at every free:
   // with the mmap threshold fixed, glibc's trim threshold stays at 128 KiB

@@ -1,7 +1,7 @@
 #pragma once
 // Arrays that threads write by rows start on a cache line (64 bytes) and
 // own whole lines, so that two threads never write one line (false
-// sharing; docs/speed-accuracy.md, "arrays on their own cache lines").
+// sharing; docs/speed-accuracy-history.md, "arrays on their own cache lines").
 #include <algorithm>
 #include <atomic>
 #include <cstddef>

@@ -5,11 +5,15 @@
 #include <string>
 
 #include "solver/kernels/kernel.hpp"
-#include "solver/physics/kernel_correction.hpp"
 
 namespace gearsph {
 
 enum class Formulation { UpdatedLagrangian, TotalLagrangian };
+
+// The order of the kernel-gradient correction (physics/kernel_correction.hpp).
+enum class GradientCorrection { None, Linear, Quadratic };
+
+const char* gradient_correction_name(GradientCorrection c);
 
 // How a scene places its particles: on a square lattice (cell centres
 // inside the outline, a staircase along curves), or body-fitted (a row on

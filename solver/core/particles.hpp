@@ -13,6 +13,10 @@
 
 namespace gearsph {
 
+// Particles deeper than this many spacings below their body's surface never
+// take part in contact (scene/surfaces.hpp finds the depths).
+constexpr double kSurfaceReachOverDx = 1.5;
+
 struct Particles {
   std::size_t n = 0;
 

@@ -37,7 +37,7 @@
 
 #include "solver/core/cache_aligned.hpp"
 #include "solver/core/pass_times.hpp"
-#include "solver/neighbours/row_chunks.hpp"
+#include "solver/core/row_chunks.hpp"
 
 namespace gearsph {
 

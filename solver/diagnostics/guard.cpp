@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "solver/core/simulation.hpp"
-#include "solver/integrate/integrator.hpp"
+#include "solver/diagnostics/divergence.hpp"
 
 namespace gearsph::diagnostics {
 

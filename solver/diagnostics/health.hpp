@@ -27,8 +27,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "solver/diagnostics/divergence.hpp"
 #include "solver/diagnostics/energy.hpp"
-#include "solver/integrate/integrator.hpp"
 
 namespace gearsph {
 struct Simulation;

@@ -10,6 +10,7 @@ namespace gearsph::gear {
 
 namespace {
 
+using geometry::at_arc;
 using geometry::Point;
 constexpr double kPi = std::numbers::pi;
 
@@ -39,22 +40,8 @@ HalfTooth half_tooth_line(const geometry::PinionGeometry& g) {
     if (geometry::norm(half[k] - h.line.back()) > 0.0) h.line.push_back(half[k]);
   }
   if (!cut) throw std::runtime_error("fillet: the half tooth never reaches the form circle");
-  h.cum.assign(h.line.size(), 0.0);
-  for (std::size_t k = 1; k < h.line.size(); ++k) {
-    h.cum[k] = h.cum[k - 1] + geometry::norm(h.line[k] - h.line[k - 1]);
-  }
+  h.cum = geometry::cumulative_arc(h.line);
   return h;
-}
-
-// Position at arc length s along a polyline with cumulative lengths `cum`.
-Point at_arc(const std::vector<Point>& line, const std::vector<double>& cum, double s) {
-  s = std::clamp(s, 0.0, cum.back());
-  const auto it = std::upper_bound(cum.begin(), cum.end(), s);
-  const std::size_t k =
-      std::min<std::size_t>(std::max<std::ptrdiff_t>(it - cum.begin(), 1), line.size() - 1);
-  const double len = cum[k] - cum[k - 1];
-  const double f = len > 0.0 ? (s - cum[k - 1]) / len : 0.0;
-  return line[k - 1] + f * (line[k] - line[k - 1]);
 }
 
 // Length of the polyline segment at arc length s.

@@ -60,6 +60,24 @@ static double distance_to_segment(Point a, Point b, Point p) {
   return norm(p - (a + t * ab));
 }
 
+std::vector<double> cumulative_arc(const std::vector<Point>& line) {
+  std::vector<double> cum(line.size(), 0.0);
+  for (std::size_t k = 1; k < line.size(); ++k) {
+    cum[k] = cum[k - 1] + norm(line[k] - line[k - 1]);
+  }
+  return cum;
+}
+
+Point at_arc(const std::vector<Point>& line, const std::vector<double>& cum, double s) {
+  s = std::clamp(s, 0.0, cum.back());
+  const auto it = std::upper_bound(cum.begin(), cum.end(), s);
+  const std::size_t k =
+      std::min<std::size_t>(std::max<std::ptrdiff_t>(it - cum.begin(), 1), line.size() - 1);
+  const double len = cum[k] - cum[k - 1];
+  const double f = len > 0.0 ? (s - cum[k - 1]) / len : 0.0;
+  return line[k - 1] + f * (line[k] - line[k - 1]);
+}
+
 double distance_to_polyline(const std::vector<Point>& line, Point p, bool closed) {
   double best = std::numeric_limits<double>::infinity();
   const std::size_t n = line.size();

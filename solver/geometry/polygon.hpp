@@ -70,6 +70,11 @@ double polar_moment(const Polygon& poly);
 // Shortest distance from p to the segments of a polyline (closed: also the
 // segment from the last vertex back to the first).
 double distance_to_polyline(const std::vector<Point>& line, Point p, bool closed);
+// Arc length from the first vertex of a polyline to each of its vertices.
+std::vector<double> cumulative_arc(const std::vector<Point>& line);
+// Position at arc length s (clamped to the line) along a polyline with
+// cumulative lengths `cum` (cumulative_arc).
+Point at_arc(const std::vector<Point>& line, const std::vector<double>& cum, double s);
 
 // The ray-crossing predicate shared by all inside tests (see the header
 // comment). Returns true and the crossing abscissa when edge (a, b) is counted

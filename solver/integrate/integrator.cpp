@@ -14,7 +14,6 @@
 #include "solver/physics/stress_rate.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 #include "solver/physics/velocity_gradient.hpp"
-#include "solver/scene/surfaces.hpp"
 
 namespace gearsph::integrate {
 
@@ -40,7 +39,7 @@ double contact_reach(const Simulation& sim) {
   if (sim.contact.model != ContactModel::Surface) return sim.contact.r0_over_dx * dx;
   const bool fitted =
       std::any_of(sim.bodies.begin(), sim.bodies.end(), [](const Body& b) { return b.fitted; });
-  if (!fitted) return (2.0 * scenes::kSurfaceReachOverDx + 1.0) * dx;
+  if (!fitted) return (2.0 * kSurfaceReachOverDx + 1.0) * dx;
   const Particles& p = sim.particles;
   double reach = 0.0;
   for (std::size_t i = 0; i < p.n; ++i) {
@@ -117,7 +116,7 @@ void initialise(Simulation& sim) {
   // The setup's temporaries (moment matrices, the stable-step estimate's
   // vectors) went back to the heap in pieces the allocator keeps;
   // return them to the system, so that a long run holds only what it uses
-  // (~22 % of the resident memory at 1e6 particles; docs/speed-accuracy.md).
+  // (~22 % of the resident memory at 1e6 particles; docs/speed-accuracy-history.md).
   malloc_trim(0);
 }
 

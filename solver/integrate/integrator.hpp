@@ -3,28 +3,11 @@
 // order. Density and stress, which depend on positions, are advanced at the
 // drift with the mid-step velocity v^{n+1/2}, the staggered arrangement of
 // leapfrog schemes for elastodynamics (second order for linear elasticity).
-#include <stdexcept>
-#include <string>
+#include "solver/diagnostics/divergence.hpp"
 
 namespace gearsph {
 
 struct Simulation;
-
-// A run that blew up: which step, which particle, which quantity.
-class DivergenceError : public std::runtime_error {
- public:
-  DivergenceError(std::string message, long at_step, long at_particle, std::string what,
-                  double bad_value)
-      : std::runtime_error(std::move(message)),
-        step(at_step),
-        particle(at_particle),
-        quantity(std::move(what)),
-        value(bad_value) {}
-  long step;
-  long particle;
-  std::string quantity;
-  double value;
-};
 
 namespace integrate {
 // Prepares neighbour lists and the rates at t = 0 (call once before step()).

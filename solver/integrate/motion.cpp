@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/core/row_chunks.hpp"
 #include "solver/core/simulation.hpp"
-#include "solver/neighbours/row_chunks.hpp"
 #include "solver/physics/external_loads.hpp"
 
 namespace gearsph::integrate {
@@ -36,7 +36,7 @@ void spin(Simulation& sim, std::size_t k, double dt_half) {
 // stretch of particles that share one motion, through these, so that they
 // vectorise: through Particles& each store makes the compiler reload the
 // next array's address, and a switch per particle stops the vectoriser
-// (docs/speed-accuracy.md, "the per-particle passes as vector loops").
+// (docs/speed-accuracy-history.md, "the per-particle passes as vector loops").
 struct Kinematics {
   double *x, *y, *vx, *vy;
   const double *x0, *y0, *ax, *ay, *ext_ax, *ext_ay, *mass, *load_ax, *load_ay;

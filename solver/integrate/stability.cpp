@@ -5,9 +5,9 @@
 #include <random>
 
 #include "solver/core/passes.hpp"
+#include "solver/core/row_chunks.hpp"
 #include "solver/core/setup_progress.hpp"
 #include "solver/core/simulation.hpp"
-#include "solver/neighbours/row_chunks.hpp"
 #include "solver/physics/artificial_viscosity.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 
@@ -276,7 +276,7 @@ double stable_step(const Simulation& sim, double w, double g) {
 
 StabilityLimit estimate_stability_limit(Simulation& sim) {
   // On the scene itself, not a copy (the copy was the set-up's peak of
-  // memory: docs/speed-accuracy.md), in the total-Lagrangian form: at the
+  // memory: docs/speed-accuracy-history.md), in the total-Lagrangian form: at the
   // initial configuration its linearisation is the updated-Lagrangian one
   // too. In a total-Lagrangian scene the reference pairs built here are the
   // run's own.

@@ -29,6 +29,18 @@ struct StepSums {
   }
 };
 
+// The step's ledger, once the passes are done, in the order the terms were
+// always added (the same bits as before the table).
+inline void book_step(Simulation& sim, const StepSums& sums, bool contact, bool torque) {
+  const double dt = sim.dt;
+  sim.energy.dissipated += dt * sums.viscous;
+  sim.energy.dissipated += sums.damped;
+  if (contact) physics::record_contact(sim, sums.touched);
+  const double drive = torque ? sums.power.drive + torque_drive_power(sim) : sums.power.drive;
+  sim.energy.drive_work += dt * drive;
+  sim.energy.external_work += dt * sums.power.load;
+}
+
 // Whether the bodies touch through the contact list (a penalty law).
 bool penalty_contact(const Simulation& sim);
 // t += dt, step += 1: the step's one clock.

@@ -19,22 +19,6 @@
 
 namespace gearsph::integrate {
 
-namespace {
-
-// The step's ledger, once the passes are done, in the order the terms were
-// always added (the same bits as before the table).
-void book(Simulation& sim, const StepSums& sums, bool contact, bool torque) {
-  const double dt = sim.dt;
-  sim.energy.dissipated += dt * sums.viscous;
-  sim.energy.dissipated += sums.damped;
-  if (contact) physics::record_contact(sim, sums.touched);
-  const double drive = torque ? sums.power.drive + torque_drive_power(sim) : sums.power.drive;
-  sim.energy.drive_work += dt * drive;
-  sim.energy.external_work += dt * sums.power.load;
-}
-
-}  // namespace
-
 void updated_lagrangian_step(Simulation& sim, bool apart) {
   const std::size_t n = sim.particles.n;
   const double dt = sim.dt, t = sim.time + dt;  // t: read before the clock moves
@@ -124,7 +108,7 @@ void updated_lagrangian_step(Simulation& sim, bool apart) {
   // A particle outside the domain stops the table after the clock.
   const S sums = run_step_passes<S>(sim, step, sim.threads, outside, apart);
   if (outside > 0) diagnostics::throw_divergence(sim, "domain check");
-  book(sim, sums, contact, torque);
+  book_step(sim, sums, contact, torque);
 }
 
 }  // namespace gearsph::integrate

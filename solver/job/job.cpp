@@ -267,7 +267,7 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads, int max_threads)
   // A total-Lagrangian run never takes an updated-Lagrangian step: free
   // those 29 arrays now rather than at integrate::initialise, before the
   // stable-step estimate below builds the reference pairs beside them (the
-  // set-up's peak of memory; docs/speed-accuracy.md).
+  // set-up's peak of memory; docs/speed-accuracy-history.md).
   if (sim.method.formulation == Formulation::TotalLagrangian) {
     sim.particles.release_updated_lagrangian();
   }
@@ -340,7 +340,7 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads, int max_threads)
   } else {
     // By time, not by step: kDefaultHistoryPoints over the run, but not
     // closer than kDefaultHistoryMinSteps steps, so that a short run does not
-    // spend a sixth of its time on a row every step (docs/speed-accuracy.md,
+    // spend a sixth of its time on a row every step (docs/speed-accuracy-history.md,
     // "Outputs"). The run's own checks keep their cadence (runner.cpp).
     out.history_every = std::max(every(kDefaultHistoryPoints), kDefaultHistoryMinSteps);
   }

@@ -10,7 +10,6 @@
 #include <nlohmann/json.hpp>
 
 #include "solver/integrate/time_step.hpp"
-#include "solver/run/thread_trial.hpp"
 #include "solver/scene/scene.hpp"
 
 namespace gearsph {
@@ -38,6 +37,10 @@ nlohmann::json validate_job(const nlohmann::json& job);
 inline constexpr std::int64_t kDefaultHistoryPoints = 4000;
 inline constexpr std::int64_t kDefaultHistoryMinSteps = 10;
 
+// How often a run chosen by trial repeats it (run/thread_trial.hpp): ~0.5 %
+// of the run at ~50 ms a trial.
+inline constexpr double kRetrialSeconds = 10.0;
+
 struct PreparedJob {
   nlohmann::json job;  // with defaults
   Scene scene;
@@ -55,7 +58,7 @@ struct PreparedJob {
   int trial_threads = 0;
   // For "trial": the trial is repeated on a copy of the running scene every
   // so many seconds of the run, and the run switches to its new choice
-  // (run/thread_trial.hpp, kRetrialSeconds); <= 0: after every 64 steps.
+  // (run/thread_trial.hpp); <= 0: after every 64 steps.
   double retrial_every_s = kRetrialSeconds;
 };
 
@@ -66,7 +69,7 @@ PreparedJob prepare_job(const nlohmann::json& job, int threads = 0, int max_thre
 
 // Threads worth giving a scene of `particles`: one per kParticlesPerThread,
 // at least one, at most max_threads. On 2 cores two threads beat one from
-// ~100 particles up when the second core is free (docs/speed-accuracy.md,
+// ~100 particles up when the second core is free (docs/speed-accuracy-history.md,
 // Threads).
 inline constexpr std::size_t kParticlesPerThread = 100;
 int threads_for(std::size_t particles, int max_threads);

@@ -35,7 +35,7 @@ inline double monaghan_pi(const ArtificialViscosity& av, double h, double vr, do
 // is left is two constants per pair and a polynomial in v.x:
 //   Pi_ij dW/dr / r = v (a v - b),  v = min(v_ij . x_ij, 0),
 // with no square root, division or branch in the step, and every pair the
-// same cost (docs/speed-accuracy.md, twelfth round). Separating pairs
+// same cost (docs/speed-accuracy-history.md, twelfth round). Separating pairs
 // (v.x >= 0) are not damped. The stable-step estimate's damping
 // (integrate/stability.cpp) is its linear part, b, exactly.
 struct ReferenceViscosity {

@@ -292,7 +292,7 @@ void add_contact_accelerations(Simulation& sim, std::size_t lo, std::size_t hi) 
   // own receivers. Per receiver the shares arrive in ascending source
   // order, as a table per receiver gave them (the same bits), at a few
   // touching sources a step instead of every receiver's table (4 % of the
-  // gear's step; docs/speed-accuracy.md, twelfth round).
+  // gear's step; docs/speed-accuracy-history.md, twelfth round).
   ContactState& st = sim.contact_state;
   double* const fx = st.spread_ax.data();
   double* const fy = st.spread_ay.data();

@@ -5,18 +5,6 @@
 
 namespace gearsph {
 
-const char* gradient_correction_name(GradientCorrection c) {
-  switch (c) {
-    case GradientCorrection::None:
-      return "none";
-    case GradientCorrection::Linear:
-      return "linear";
-    case GradientCorrection::Quadratic:
-      break;
-  }
-  return "quadratic";
-}
-
 namespace physics {
 
 namespace {

@@ -23,11 +23,9 @@
 // features) the order is lowered: quadratic -> linear -> none.
 #include <cmath>
 
+#include "solver/core/method.hpp"
+
 namespace gearsph {
-
-enum class GradientCorrection { None, Linear, Quadratic };
-
-const char* gradient_correction_name(GradientCorrection c);
 
 namespace physics {
 

@@ -26,7 +26,7 @@ constexpr int kMomentumSpill = 6;
 constexpr std::size_t kNeverStop = 0;
 
 // What a row costs besides its pairs, in pairs of its own pass: measured
-// on the seed paper's gear, one thread (docs/speed-accuracy.md, "a cut for
+// on the seed paper's gear, one thread (docs/speed-accuracy-history.md, "a cut for
 // each pair pass"). Every pair of a pass costs the same: the viscosity has
 // no branch (artificial_viscosity.hpp, viscosity_pair).
 constexpr double kStressRowCost = 4.0;
@@ -35,7 +35,7 @@ constexpr double kMomentumRowCost = 3.0;
 // Four sums of one particle as one vector (GCC's vector extension: one
 // AVX register). A pair adds its four values to its far end with one load,
 // one fused multiply-add and one store instead of four scattered sums
-// (docs/speed-accuracy.md, "a pair's four sums to its far end").
+// (docs/speed-accuracy-history.md, "a pair's four sums to its far end").
 using Four = double __attribute__((vector_size(4 * sizeof(double))));
 
 // to[0..3] += a * b, each lane rounded once, as the scalar to += a * b is
@@ -224,7 +224,7 @@ void note_chunk_peak(Simulation& sim, const RowChunks& chunks, int c) {
 // (equal and opposite: momentum is conserved exactly). The own share
 // P_i sum_j V0_j G_ij needs no pair work (sgx, sgy). The row sums are left
 // scalar on purpose: `omp simd` reductions over gathered neighbours cost more
-// in gathers, masks and set-up than they save (docs/speed-accuracy.md).
+// in gathers, masks and set-up than they save (docs/speed-accuracy-history.md).
 // Momentum loop, pass 1 for chunk c; returns the energy the hourglass
 // control removed per unit time (the viscosity's: accelerations_per_particle).
 template <bool kHourglass, bool kUniform>
@@ -272,7 +272,7 @@ double momentum_pairs_of(Simulation& sim, RowChunks& chunks, int c) {
     double hsx = kHourglass ? hg_sum[0][i] : 0.0, hsy = kHourglass ? hg_sum[1][i] : 0.0;
     // Inlined by force: out of line (GCC's choice with hourglass control) its
     // sums and array addresses go through the closure to memory at every
-    // pair (docs/speed-accuracy.md, "Hourglass control's pair loop").
+    // pair (docs/speed-accuracy-history.md, "Hourglass control's pair loop").
     auto pairs = [&](std::uint32_t k0, std::uint32_t k1, double* to, double* const* hg_to,
                      std::size_t base) __attribute__((always_inline)) {
       for (std::uint32_t k = k0; k < k1; ++k) {

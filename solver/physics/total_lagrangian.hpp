@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "solver/core/cache_aligned.hpp"
+#include "solver/core/row_chunks.hpp"
 #include "solver/kernels/kernel.hpp"
-#include "solver/neighbours/row_chunks.hpp"
 #include "solver/physics/crack_face_contact.hpp"
 #include "solver/physics/kernel_correction.hpp"
 
@@ -49,7 +49,7 @@ struct ReferencePairs {
   Column<double> pv;
   // x, y, vx, vy per particle, side by side (4 i + q), copied by the stress
   // pass for the momentum pass's gathers: one line a neighbour instead of
-  // four, and fewer array addresses than registers (docs/speed-accuracy.md,
+  // four, and fewer array addresses than registers (docs/speed-accuracy-history.md,
   // twelfth round).
   Column<double> state;
   Column<double> vol0;  // reference volume m/rho0, per particle
@@ -78,7 +78,7 @@ struct ReferencePairs {
   // far end as one vector: the F pass's M = F - I (xx, xy, yx, yy), then
   // the momentum pass's stress share and viscous acceleration (x, y, x, y),
   // summed apart so that the pair-once sums end in the same order as full
-  // rows would (docs/speed-accuracy.md, "a pair's four sums to its far end").
+  // rows would (docs/speed-accuracy-history.md, "a pair's four sums to its far end").
   Column<double> sums;
   // Hourglass accelerations.
   Column<double> hg_ax, hg_ay;

@@ -25,7 +25,7 @@ void corrected_gradient(const Correction& c, double w, double dx, double dy, dou
 
 ReferencePairs::Basis basis_of(const Simulation& sim) {
   // W itself is needed only by hourglass control: without it a pair takes
-  // 8 bytes less (docs/speed-accuracy.md, memory per particle).
+  // 8 bytes less (docs/speed-accuracy-history.md, memory per particle).
   ReferencePairs::Basis b{sim.particles.n, sim.discretization.kernel, sim.h(),
                           sim.method.correction, sim.method.hourglass.enabled()};
   // Graded particles: their smoothing lengths, summed, tell a changed

@@ -130,7 +130,7 @@ RunResult run_job(PreparedJob& job, RunObserver* observer) {
         const diagnostics::EnergyState e = sample(scene, result.history, row);
         // The energy at every sample, the detectors that loop over pairs at
         // most every kHealthEverySteps: a short run sampling every step
-        // spent 7 % of its time in them (docs/speed-accuracy.md, "Outputs").
+        // spent 7 % of its time in them (docs/speed-accuracy-history.md, "Outputs").
         const bool full = s - last_health >= kHealthEverySteps || s == last;
         health.check(sim, e, full);
         if (full) last_health = s;

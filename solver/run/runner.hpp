@@ -8,8 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "solver/diagnostics/history.hpp"
 #include "solver/job/job.hpp"
-#include "solver/run/history.hpp"
 
 namespace gearsph {
 

@@ -4,15 +4,15 @@
 // paper's gear 1.6-1.7x faster than one on a free 2-core machine, and 2.5x
 // slower than one when another program holds the second core (every time
 // step waits ~10 times for the thread that is not running;
-// docs/speed-accuracy.md, Threads). Only a measurement tells the two apart.
+// docs/speed-accuracy-history.md, Threads). Only a measurement tells the two apart.
 //
 // The trial steps a copy: the run itself starts from the untouched scene, so
 // its results are those of a run told the chosen count from the start.
 //
 // A trial of ~40 ms that falls in a spell of load would choose for the
 // whole run, so a run repeats the trial, on a copy of its current state,
-// every kRetrialSeconds, and switches to the new choice
-// (docs/speed-accuracy.md, "Threads"). A run without a switch is still that
+// every kRetrialSeconds (job/job.hpp), and switches to the new choice
+// (docs/speed-accuracy-history.md, "Threads"). A run without a switch is still that
 // of a run told its count from the start; each switch changes the round-off
 // from there on (the threads' sums meet in another order), and the summary
 // lists the switches.
@@ -28,9 +28,6 @@ struct ThreadTrial {
   int chosen = 1;
   bool diverged = false;  // the copy diverged: `chosen` is 1 by default, not by timing
 };
-
-// How often a run repeats the trial: ~0.5 % of the run at ~50 ms a trial.
-inline constexpr double kRetrialSeconds = 10.0;
 
 // Tries 1, 2, 4, ... and `most` threads (most >= 1). A count is kept only if
 // it beats every smaller one by kTrialMargin: a second core spent for a

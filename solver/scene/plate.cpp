@@ -9,7 +9,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "solver/run/signal.hpp"
+#include "solver/diagnostics/signal.hpp"
 #include "solver/scene/builders.hpp"
 #include "solver/scene/lattice.hpp"
 

@@ -45,7 +45,7 @@ constexpr double kBulkOverFineMax = 3.0;
 // The default fillet spacing, in root fillet radii rho_F. Read from the
 // fillet's stretch, rho_F / 5 is within -1.5 to +3.4 % of FE on seven
 // pinions, and rho_F / 7 (-0.8 to +3.1 %) costs 1.3-1.45 times as much in
-// the paper's full case (docs/speed-accuracy.md, sixteenth round).
+// the paper's full case (docs/speed-accuracy-history.md, sixteenth round).
 constexpr double kFilletsPerRootRadius = 5.0;
 // The pinion's default bulk spacing, in fillet spacings: the tooth and the
 // rim under it carry the bending that the fillets concentrate. At three

@@ -10,10 +10,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "solver/diagnostics/history.hpp"
 #include "solver/gear/gear_rating.hpp"
 #include "solver/gear/mesh_dynamics_iso.hpp"
 #include "solver/gear/mesh_dynamics_sdof.hpp"
-#include "solver/run/history.hpp"
 #include "solver/scene/rack_pinion_roots.hpp"
 
 namespace gearsph {

@@ -12,7 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "solver/core/simulation.hpp"
-#include "solver/run/history.hpp"
+#include "solver/diagnostics/history.hpp"
 
 namespace gearsph {
 

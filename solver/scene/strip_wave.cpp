@@ -16,7 +16,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "solver/run/signal.hpp"
+#include "solver/diagnostics/signal.hpp"
 #include "solver/scene/builders.hpp"
 #include "solver/scene/lattice.hpp"
 

@@ -12,9 +12,6 @@
 
 namespace gearsph::scenes {
 
-// Particles deeper than this many spacings never take part in contact.
-constexpr double kSurfaceReachOverDx = 1.5;
-
 void assign_surfaces(Scene& scene);
 
 }  // namespace gearsph::scenes

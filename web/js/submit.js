@@ -61,12 +61,138 @@ function layout(root, jobs) {
   return el;
 }
 
+// The preview follows every change: one request at a time, the latest wins.
+function livePreview(page) {
+  const { el, jobs, currentJob, showProblems } = page;
+  let sequence = 0;
+  let timer = null;
+  let controller = null;
+  let last = null;
+  let stale = false;
+
+  function draw(doc, isStale) {
+    stale = isStale;
+    // The numbers beside the picture are as out of date as the picture.
+    el.estimate.classList.toggle("stale", isStale);
+    el.model.classList.toggle("stale", isStale);
+    drawPreview(el.canvas, el.legend, doc, isStale);
+  }
+
+  async function run() {
+    const mine = ++sequence;
+    controller?.abort();
+    controller = new AbortController();
+    el.previewState.textContent = "updating…";
+    let job;
+    try {
+      job = currentJob();
+    } catch (e) {
+      jobs.clearErrors();
+      showProblems([{ pointer: "", detail: e.message }], "The JSON does not parse");
+      el.previewState.textContent = "not updated";
+      return;
+    }
+    saved = page.mode() === "form" ? job : saved;
+    try {
+      const res = await apiFetch("/preview", {
+        method: "POST", body: JSON.stringify(job), signal: controller.signal,
+        headers: { "Content-Type": "application/json", Accept: "application/json" },
+      });
+      const doc = await res.json();
+      if (mine !== sequence || page.disposed()) return;
+      jobs.clearErrors();
+      if (res.ok && doc.built === false) {
+        // Beyond what the server builds for a preview: counts and run time, no geometry.
+        if (!doc.accepted) showProblems(doc.errors, "This server would refuse this job");
+        el.previewState.textContent = doc.points_omitted;
+        draw(last, true);
+        showEstimate(el.estimate, doc);
+        return;
+      }
+      if (!res.ok || !doc.outlines) {
+        // Not a job (malformed), invalid, or too large to build: the reasons.
+        showProblems(doc.errors?.length ? doc.errors : [{ pointer: "", detail: doc.detail || doc.title }],
+          doc.valid === false ? undefined : "This server would refuse this job");
+        el.previewState.textContent = "fix the marked fields to update the preview";
+        draw(last, true);
+        return;
+      }
+      last = doc;
+      const chosen = { "/time/end_s": doc.end_s, "/time/dt_s": doc.dt_s, "/discretization/spacing_mm": doc.spacing_m * 1e3 };
+      jobs.showChosen((pointer) => (pointer in chosen ? chosen[pointer] : getPointer(doc.job, pointer)));
+      if (!doc.accepted) showProblems(doc.errors, "This server would refuse this job");
+      el.previewState.textContent = doc.finest_spacing_m < 0.999 * doc.spacing_m
+        ? `${int(doc.particles)} particles, spacing ${eng(doc.finest_spacing_m, "m")} to ${eng(doc.spacing_m, "m")}`
+        : `${int(doc.particles)} particles, dx = ${eng(doc.spacing_m, "m")}`;
+      draw(doc, false);
+      showEstimate(el.estimate, doc);
+      showModel(el.model, doc);
+    } catch (e) {
+      if (e.name === "AbortError" || page.disposed()) return;
+      el.previewState.textContent = `preview failed: ${e.message}`;
+    }
+  }
+
+  return {
+    schedule(delay = 350) {
+      clearTimeout(timer);
+      timer = setTimeout(run, delay);
+    },
+    redraw: () => draw(last, stale),
+    stop() {
+      clearTimeout(timer);
+      controller?.abort();
+    },
+  };
+}
+
+// Submits: the server checks the job first (POST /preview answers with the
+// problems at their fields); only a job it would take is submitted.
+async function submitJob(page) {
+  const { el, jobs, currentJob, showProblems } = page;
+  jobs.clearErrors();
+  let job;
+  try {
+    job = currentJob();
+  } catch (err) {
+    showProblems([{ pointer: "", detail: err.message }], "The JSON does not parse");
+    return;
+  }
+  el.submitButton.disabled = true;
+  el.formState.textContent = "checking…";
+  try {
+    const check = await post("/preview", job);
+    if (!check.accepted) {
+      el.formState.textContent = "";
+      showProblems(check.errors, check.valid === false ? "Not submitted: invalid job" : "Not submitted: this server would refuse this job");
+      jobs.focusProblems(page.mode() === "form");
+      return;
+    }
+    el.formState.textContent = "submitting…";
+    const doc = await post("/jobs", job);
+    events.remember(doc);
+    el.formState.textContent = "";
+    toast(`Job “${doc.name || job.name || "job"}” submitted: ${int(doc.particles)} particles, ${int(doc.steps)} steps.`);
+    location.hash = `#/jobs/${doc.jobID}`;
+  } catch (err) {
+    el.formState.textContent = "";
+    if (err instanceof ApiError) {
+      const errors = err.errors.length ? err.errors : [{ pointer: "", detail: err.message }];
+      showProblems(errors, err.problem.title ? `Not submitted: ${err.problem.title.toLowerCase()}` : undefined);
+      jobs.focusProblems(page.mode() === "form");
+    } else {
+      showProblems([{ pointer: "", detail: err.message }], "Not submitted");
+    }
+  } finally {
+    el.submitButton.disabled = false;
+  }
+}
+
 export function submitView(root) {
   let mode = "form";
   let disposed = false;
   const jobs = jobForm({ onEdit: (delay) => preview.schedule(delay) });
   const el = layout(root, jobs);
-  const preview = livePreview();
 
   schema().then((s) => {
     if (disposed) return;
@@ -89,89 +215,8 @@ export function submitView(root) {
     jobs.showProblems(errors, title, mode === "form");
   }
 
-  // The preview follows every change: one request at a time, the latest wins.
-  function livePreview() {
-    let sequence = 0;
-    let timer = null;
-    let controller = null;
-    let last = null;
-    let stale = false;
-
-    function draw(doc, isStale) {
-      stale = isStale;
-      // The numbers beside the picture are as out of date as the picture.
-      el.estimate.classList.toggle("stale", isStale);
-      el.model.classList.toggle("stale", isStale);
-      drawPreview(el.canvas, el.legend, doc, isStale);
-    }
-
-    async function run() {
-      const mine = ++sequence;
-      controller?.abort();
-      controller = new AbortController();
-      el.previewState.textContent = "updating…";
-      let job;
-      try {
-        job = currentJob();
-      } catch (e) {
-        jobs.clearErrors();
-        showProblems([{ pointer: "", detail: e.message }], "The JSON does not parse");
-        el.previewState.textContent = "not updated";
-        return;
-      }
-      saved = mode === "form" ? job : saved;
-      try {
-        const res = await apiFetch("/preview", {
-          method: "POST", body: JSON.stringify(job), signal: controller.signal,
-          headers: { "Content-Type": "application/json", Accept: "application/json" },
-        });
-        const doc = await res.json();
-        if (mine !== sequence || disposed) return;
-        jobs.clearErrors();
-        if (res.ok && doc.built === false) {
-          // Beyond what the server builds for a preview: counts and run time, no geometry.
-          if (!doc.accepted) showProblems(doc.errors, "This server would refuse this job");
-          el.previewState.textContent = doc.points_omitted;
-          draw(last, true);
-          showEstimate(el.estimate, doc);
-          return;
-        }
-        if (!res.ok || !doc.outlines) {
-          // Not a job (malformed), invalid, or too large to build: the reasons.
-          showProblems(doc.errors?.length ? doc.errors : [{ pointer: "", detail: doc.detail || doc.title }],
-            doc.valid === false ? undefined : "This server would refuse this job");
-          el.previewState.textContent = "fix the marked fields to update the preview";
-          draw(last, true);
-          return;
-        }
-        last = doc;
-        const chosen = { "/time/end_s": doc.end_s, "/time/dt_s": doc.dt_s, "/discretization/spacing_mm": doc.spacing_m * 1e3 };
-        jobs.showChosen((pointer) => (pointer in chosen ? chosen[pointer] : getPointer(doc.job, pointer)));
-        if (!doc.accepted) showProblems(doc.errors, "This server would refuse this job");
-        el.previewState.textContent = doc.finest_spacing_m < 0.999 * doc.spacing_m
-          ? `${int(doc.particles)} particles, spacing ${eng(doc.finest_spacing_m, "m")} to ${eng(doc.spacing_m, "m")}`
-          : `${int(doc.particles)} particles, dx = ${eng(doc.spacing_m, "m")}`;
-        draw(doc, false);
-        showEstimate(el.estimate, doc);
-        showModel(el.model, doc);
-      } catch (e) {
-        if (e.name === "AbortError" || disposed) return;
-        el.previewState.textContent = `preview failed: ${e.message}`;
-      }
-    }
-
-    return {
-      schedule(delay = 350) {
-        clearTimeout(timer);
-        timer = setTimeout(run, delay);
-      },
-      redraw: () => draw(last, stale),
-      stop() {
-        clearTimeout(timer);
-        controller?.abort();
-      },
-    };
-  }
+  const page = { el, jobs, currentJob, showProblems, mode: () => mode, disposed: () => disposed };
+  const preview = livePreview(page);
 
   // --- tabs ---
   function setMode(next) {
@@ -206,50 +251,10 @@ export function submitView(root) {
     preview.schedule(0);
   });
 
-  // --- submit: the server checks the job first (POST /preview answers with
-  // the problems at their fields); only a job it would take is submitted ---
-  async function submit() {
-    jobs.clearErrors();
-    let job;
-    try {
-      job = currentJob();
-    } catch (err) {
-      showProblems([{ pointer: "", detail: err.message }], "The JSON does not parse");
-      return;
-    }
-    el.submitButton.disabled = true;
-    el.formState.textContent = "checking…";
-    try {
-      const check = await post("/preview", job);
-      if (!check.accepted) {
-        el.formState.textContent = "";
-        showProblems(check.errors, check.valid === false ? "Not submitted: invalid job" : "Not submitted: this server would refuse this job");
-        jobs.focusProblems(mode === "form");
-        return;
-      }
-      el.formState.textContent = "submitting…";
-      const doc = await post("/jobs", job);
-      events.remember(doc);
-      el.formState.textContent = "";
-      toast(`Job “${doc.name || job.name || "job"}” submitted: ${int(doc.particles)} particles, ${int(doc.steps)} steps.`);
-      location.hash = `#/jobs/${doc.jobID}`;
-    } catch (err) {
-      el.formState.textContent = "";
-      if (err instanceof ApiError) {
-        const errors = err.errors.length ? err.errors : [{ pointer: "", detail: err.message }];
-        showProblems(errors, err.problem.title ? `Not submitted: ${err.problem.title.toLowerCase()}` : undefined);
-        jobs.focusProblems(mode === "form");
-      } else {
-        showProblems([{ pointer: "", detail: err.message }], "Not submitted");
-      }
-    } finally {
-      el.submitButton.disabled = false;
-    }
-  }
   jobs.form.addEventListener("submit", (e) => e.preventDefault());
   el.submitButton.addEventListener("click", (e) => {
     e.preventDefault();
-    submit();
+    submitJob(page);
   });
 
   window.addEventListener("resize", preview.redraw);

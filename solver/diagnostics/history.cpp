@@ -1,4 +1,4 @@
-#include "solver/run/history.hpp"
+#include "solver/diagnostics/history.hpp"
 
 #include <cstdio>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "solver/neighbours/row_chunks.hpp"
+#include "solver/core/row_chunks.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "solver/run/signal.hpp"
+#include "solver/diagnostics/signal.hpp"
 
 #include <algorithm>
 #include <cmath>
