@@ -240,6 +240,32 @@ TEST(Jobs, AResolvedContactIsAskedOnlyWhereItApplies) {
       << describe(issues);
 }
 
+// A pinion of contact ratio below 1 (z 11, m 9, 21 degrees, x -0.3:
+// 0.95) is outside what ISO 6336 method B rates. A static check of it that
+// asks for no rating runs (the default material carries strength, so it
+// would otherwise be rated) and says why it is not rated; one that asks for
+// a rating is refused at /scene/rating. Before, both were refused, and the
+// accuracy map lost the case.
+TEST(Jobs, AStaticCheckOutsideTheRatingRunsUnrated) {
+  json job = {{"scene",
+               {{"type", "rack_pinion"},
+                {"quasi_static", true},
+                {"contact_point", "hpstc"},
+                {"pinion",
+                 {{"module_mm", 9.0},
+                  {"teeth", 11},
+                  {"pressure_angle_deg", 21.0},
+                  {"profile_shift", -0.3},
+                  {"backlash_mm", 0.0},
+                  {"omega_rad_s", 0.0}}},
+                {"rack", {{"velocity_m_s", 0.0}, {"load_N", 6600.0}}}}},
+              {"output", {{"frames", 0}}}};
+  EXPECT_NO_THROW(prepare_job(job, 1));
+  job["scene"]["rating"] = json::object();
+  auto issues = issues_of(job);
+  EXPECT_TRUE(has_issue(issues, "/scene/rating", "contact ratio")) << describe(issues);
+}
+
 // ISO 53's cutter tip radius (0.38 modules) does not fit a 25-degree tooth
 // space at the standard depths: a job that gives none gets nine tenths of
 // the largest that fits both the pinion's and the rack's space, and says so;

@@ -82,6 +82,9 @@ struct GearLayout {
   // The ISO 6336 rating document of a loaded pair whose materials carry
   // strength (gear/iso6336_simulated.hpp); null: no analysis.rating.
   nlohmann::json rating_document;
+  // Why a job that asked for no rating is not rated (its pair is outside
+  // what ISO 6336 method B rates): {pointer, message}, or null.
+  nlohmann::json rating_refusal;
 };
 
 // Particles of no modelled tooth (hub ring, rack) are marked with a number

@@ -573,6 +573,12 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
     a["static_check"] = sc;
     if (!L.rating_document.is_null()) {
       a["rating"] = gear::iso6336::rating_from_static_check(L.rating_document, sc);
+    } else if (!L.rating_refusal.is_null()) {
+      a["rating"] = {{"status", "not_rated"},
+                     {"reason", L.rating_refusal.at("message")},
+                     {"pointer", L.rating_refusal.at("pointer")}};
+      a["warnings"].push_back("rating: not rated, " +
+                              L.rating_refusal.at("message").get<std::string>());
     }
   }
 
