@@ -13,6 +13,7 @@
 #include "fe/external_program.hpp"
 #include "fe/rack_fe_model.hpp"
 #include "solver/gear/gear_rating.hpp"
+#include "solver/gear/iso6336_simulated.hpp"
 #include "solver/job/job.hpp"
 #include "solver/run/execute.hpp"
 #ifdef GEARSPH_FE_WITH_RENDER
@@ -560,6 +561,17 @@ nlohmann::json fe_comparison(const nlohmann::json& sph_summary, const nlohmann::
     }
     block["mesh_stiffness_N_per_mm_um"] = entry;
   }
+  // A rated static check (analysis.rating): the FE stresses rated under the
+  // same factors, beside the simulation's safeties.
+  if (sph_summary.contains("analysis") && sph_summary["analysis"].contains("rating") &&
+      sph_summary["analysis"]["rating"].is_object() &&
+      sph_summary["analysis"]["rating"].contains("iso6336")) {
+    try {
+      block["rating"] = gear::iso6336::rating_from_fe_check(sph_summary["analysis"]["rating"], fe);
+    } catch (const std::exception& e) {
+      block["rating"] = {{"status", "failed"}, {"message", e.what()}};
+    }
+  }
   return block;
 }
 
@@ -594,6 +606,11 @@ void add_fe_comparison(const PreparedJob& job, const RunResult& run,
   model_the_sph_run(summary, "summary", o);
   try {
     summary["fe_comparison"] = fe_comparison(summary, run_fe_check(job.job, dir, o));
+    // The FE-based safeties also stand in the rating itself.
+    if (summary["fe_comparison"].contains("rating") && summary.contains("analysis") &&
+        summary["analysis"].contains("rating")) {
+      summary["analysis"]["rating"]["fe_check"] = summary["fe_comparison"]["rating"];
+    }
   } catch (const FeUnavailable& e) {
     summary["fe_comparison"] = {{"status", "unavailable"}, {"message", e.what()}};
   } catch (const InvalidJob& e) {

@@ -14,9 +14,13 @@
 #include <filesystem>
 #include <string>
 
+#include <fstream>
+#include <sstream>
+
 #include "fe/external_program.hpp"
 #include "fe/fe_check.hpp"
 #include "solver/job/job.hpp"
+#include "solver/run/execute.hpp"
 #include "solver/run/runner.hpp"
 
 namespace gearsph::fe {
@@ -86,6 +90,50 @@ TEST(FeSphFillet, PapersPinionAtTheHpstcWithinFivePercentOfFe) {
 TEST(FeSphFillet, AnotherPinionAtThePitchPointWithinFivePercentOfFe) {
   expect_fillet_within_fe(static_check_job({{"module_mm", 5.0}, {"teeth", 16}}, 3000.0, "pitch"),
                           "m5z16");
+}
+
+// The rating issue's target: the paper's pinion in nodular iron (GJS 250
+// HB, MQ) at 5 kN, rated from the simulation and from the FE check's fillet
+// stress and Hertz pressure under the same factors, within 5 %. The job runs
+// as `gearsph run` and the service run it (the FE check added to the
+// summary), and the FE-based safeties stand in analysis.rating.fe_check.
+TEST(FeSphFillet, RatingFromTheFeCheckWithinFivePercentOfTheSimulations) {
+  if (const std::string why = fe_unavailable_reason(); !why.empty()) GTEST_SKIP() << why;
+  register_fe_check();
+  nlohmann::json job = static_check_job(nlohmann::json::object(), 5000.0, "hpstc");
+  job["name"] = "rated-fe";
+  job["scene"]["material"] = {
+      {"E_Pa", 1.73e11},
+      {"nu", 0.3},
+      {"rho_kg_m3", 7800},
+      {"iso6336_5", {{"class", "GJS"}, {"quality", "MQ"}, {"hardness_HB", 250}}},
+      {"yield_Pa", 4.2e8}};
+  job["scene"]["rating"] = {{"speed_rpm", 143.2}, {"life_h", 1000}};
+  job["scene"]["fe_check"] = true;
+  job["output"] = {{"frames", 2}};
+  const fs::path dir = fs::temp_directory_path() / "gearsph-fe-rating";
+  fs::remove_all(dir);
+  ExecuteOptions o;
+  o.threads = 1;
+  const Execution e = execute_job(job, dir, o);
+  ASSERT_EQ(e.run.status, "completed") << e.run.message;
+  std::ifstream in(dir / "summary.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  const nlohmann::json summary = nlohmann::json::parse(text.str());
+  fs::remove_all(dir);
+  ASSERT_TRUE(summary["analysis"].contains("rating")) << summary["analysis"].dump();
+  const nlohmann::json& r = summary["analysis"]["rating"];
+  ASSERT_TRUE(r.contains("fe_check")) << summary["fe_comparison"].dump();
+  const nlohmann::json& fe = r["fe_check"];
+  EXPECT_EQ(summary["fe_comparison"]["rating"], fe);
+  std::printf("S_F simulated %.4f, FE %.4f (%+.2f %%); S_H simulated %.4f, FE %.4f (%+.2f %%)\n",
+              r["simulated"]["S_F"].get<double>(), fe["S_F"].get<double>(),
+              100.0 * fe["S_F_difference"].get<double>(), r["simulated"]["S_H_hertz"].get<double>(),
+              fe["S_H_hertz"].get<double>(), 100.0 * fe["S_H_difference"].get<double>());
+  EXPECT_LT(std::abs(fe["S_F_difference"].get<double>()), 0.05);
+  EXPECT_LT(std::abs(fe["S_H_difference"].get<double>()), 0.05);
+  EXPECT_NEAR(fe["S_F_simulated"].get<double>(), r["simulated"]["S_F"].get<double>(), 1e-12);
 }
 
 }  // namespace

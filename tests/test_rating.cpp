@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "solver/gear/gear_rating.hpp"
+#include "solver/gear/iso6336_bending.hpp"
 #include "solver/gear/iso6336_life.hpp"
 #include "solver/gear/iso6336_rating.hpp"
 #include "solver/gear/iso6336_simulated.hpp"
@@ -173,17 +174,168 @@ TEST(Rating, NodularIronLimitsFromItsHardness) {
   EXPECT_NEAR(r2["materials"][0]["sigma_Flim_Pa"].get<double>(), (0.38 * 250 + 134) * 1e6, 1.0);
 }
 
+// ISO 6336-5:2016 Table 8's lines, one value per class and quality (and
+// for V and V(cast) per kind of steel), A x + B at the hardness given: the
+// table's coefficients as this build carries them. Beside the paper's GJS
+// (569.5 / 206.5 MPa, the issue's figures) and ISO/TR 6336-30's Eh MQ
+// (1500 / 425 MPa), the values are the lines' own arithmetic.
+struct LineCase {
+  const char* cls;
+  const char* steel;  // "" where the class has one kind
+  const char* quality;
+  const char* key;
+  double hardness, H_MPa, F_MPa;
+};
+constexpr LineCase kLineCases[] = {
+    {"St", "", "MQ", "hardness_HB", 150, 1.000 * 150 + 190, 0.455 * 150 + 69},
+    {"St", "", "ME", "hardness_HB", 200, 1.520 * 200 + 250, 0.386 * 200 + 147},
+    {"St(cast)", "", "ML", "hardness_HB", 180, 0.986 * 180 + 131, 0.313 * 180 + 62},
+    {"St(cast)", "", "ME", "hardness_HB", 180, 1.143 * 180 + 237, 0.254 * 180 + 137},
+    {"GTS", "", "MQ", "hardness_HB", 200, 1.371 * 200 + 143, 0.345 * 200 + 77},
+    {"GTS", "", "ME", "hardness_HB", 200, 1.333 * 200 + 267, 0.403 * 200 + 128},
+    {"GJS", "", "MQ", "hardness_HB", 250, 569.5, 206.5},
+    {"GJS", "", "ML", "hardness_HB", 175, 1.434 * 175 + 211, 0.350 * 175 + 119},
+    {"GJS", "", "ME", "hardness_HB", 250, 1.500 * 250 + 250, 0.380 * 250 + 134},
+    {"GJL", "", "MQ", "hardness_HB", 200, 1.033 * 200 + 132, 0.256 * 200 + 8},
+    {"GJL", "", "ME", "hardness_HB", 250, 1.465 * 250 + 122, 0.200 * 250 + 53},
+    {"V", "carbon", "ML", "hardness_HV", 180, 0.963 * 180 + 283, 0.250 * 180 + 108},
+    {"V", "carbon", "MQ", "hardness_HV", 180, 0.925 * 180 + 360, 0.240 * 180 + 163},
+    {"V", "carbon", "ME", "hardness_HV", 180, 0.838 * 180 + 432, 0.283 * 180 + 202},
+    {"V", "alloy", "ML", "hardness_HV", 300, 1.313 * 300 + 188, 0.423 * 300 + 104},
+    {"V", "alloy", "MQ", "hardness_HV", 300, 1.313 * 300 + 373, 0.425 * 300 + 187},
+    {"V", "alloy", "ME", "hardness_HV", 380, 2.213 * 380 + 260, 0.358 * 380 + 231},
+    {"V(cast)", "carbon", "MQ", "hardness_HV", 200, 0.831 * 200 + 300, 0.224 * 200 + 117},
+    {"V(cast)", "carbon", "ME", "hardness_HV", 200, 0.951 * 200 + 345, 0.286 * 200 + 167},
+    {"V(cast)", "alloy", "MQ", "hardness_HV", 300, 1.276 * 300 + 298, 0.364 * 300 + 161},
+    {"V(cast)", "alloy", "ME", "hardness_HV", 300, 1.350 * 300 + 356, 0.356 * 300 + 186},
+    {"Eh", "", "ML", "hardness_HV", 620, 1300, 312},
+    {"Eh", "", "MQ", "hardness_HV", 680, 1500, 425},
+    {"Eh", "", "ME", "hardness_HV", 700, 1650, 525},
+    {"IF", "", "ML", "hardness_HV", 550, 0.740 * 550 + 602, 0.305 * 550 + 76},
+    {"IF", "", "MQ", "hardness_HV", 550, 0.541 * 550 + 882, 0.138 * 550 + 290},
+    {"IF", "", "MQ", "hardness_HV", 600, 0.541 * 600 + 882, 369},
+    {"IF", "", "ME", "hardness_HV", 550, 0.505 * 550 + 1013, 0.271 * 550 + 237},
+    {"NT", "", "ML", "hardness_HV", 700, 1125, 270},
+    {"NT", "", "MQ", "hardness_HV", 700, 1250, 420},
+    {"NT", "", "ME", "hardness_HV", 700, 1450, 468},
+    {"NV(nitr)", "", "ML", "hardness_HV", 500, 788, 258},
+    {"NV(nitr)", "", "MQ", "hardness_HV", 500, 998, 363},
+    {"NV(nitr)", "", "ME", "hardness_HV", 500, 1217, 432},
+    {"NV(nitrocar)", "", "ML", "hardness_HV", 400, 650, 224},
+    {"NV(nitrocar)", "", "MQ", "hardness_HV", 400, 1.167 * 400 + 425, 0.653 * 400 + 94},
+    {"NV(nitrocar)", "", "MQ", "hardness_HV", 500, 950, 388},
+    {"NV(nitrocar)", "", "ME", "hardness_HV", 500, 950, 388},
+};
+
+json line_material(const LineCase& c) {
+  json iso = {{"class", c.cls}, {"quality", c.quality}, {c.key, c.hardness}};
+  if (*c.steel) iso["steel"] = c.steel;
+  return {{"E_Pa", 2.06e11}, {"nu", 0.3}, {"rho_kg_m3", 7830}, {"iso6336_5", iso}};
+}
+
+TEST(Rating, Iso6336_5LinesOfEveryClass) {
+  for (const LineCase& c : kLineCases) {
+    const GearMaterial g = read_gear_material(line_material(c), "/m");
+    SCOPED_TRACE(std::string(c.cls) + " " + c.steel + " " + c.quality);
+    EXPECT_NEAR(g.sigma_Hlim_Pa / 1e6, c.H_MPa, 1e-9);
+    EXPECT_NEAR(g.sigma_Flim_Pa / 1e6, c.F_MPa, 1e-9);
+    EXPECT_EQ(g.class_label, c.cls);
+  }
+}
+
+// Every class, quality and kind evaluates across its range and refuses a
+// hardness one unit outside it, at the hardness field, naming the range.
+TEST(Rating, Iso6336_5HardnessRangesAreEnforced) {
+  const char* kinds[] = {"carbon", "alloy"};
+  for (const std::string& cls : class_labels()) {
+    const bool vickers = !(cls == "St" || cls == "St(cast)" || cls == "GTS" || cls == "GJS" ||
+                           cls == "GJL");
+    const std::string key = vickers ? "hardness_HV" : "hardness_HB";
+    const bool kinded = cls == "V" || cls == "V(cast)";
+    for (const char* q : {"ML", "MQ", "ME"}) {
+      for (int k = 0; k < (kinded ? 2 : 1); ++k) {
+        json iso = {{"class", cls}, {"quality", q}};
+        if (kinded) iso["steel"] = kinds[k];
+        json m = {{"E_Pa", 2.06e11}, {"nu", 0.3}, {"rho_kg_m3", 7830}, {"iso6336_5", iso}};
+        SCOPED_TRACE(cls + " " + q + (kinded ? std::string(" ") + kinds[k] : ""));
+        // Scan 1..1200 for the accepted range; it must be one interval.
+        double lo = 0, hi = 0;
+        for (int x = 1; x <= 1200; ++x) {
+          m["iso6336_5"][key] = x;
+          bool ok = true;
+          try {
+            const GearMaterial g = read_gear_material(m, "/m");
+            EXPECT_GT(g.sigma_Hlim_Pa, 1e8);
+            EXPECT_GT(g.sigma_Flim_Pa, 5e6);
+          } catch (const InvalidRating& e) {
+            ok = false;
+            ASSERT_EQ(e.issues.at(0).pointer, "/m/iso6336_5/" + key);
+            if (lo > 0 && hi == 0) hi = x - 1;
+            EXPECT_NE(e.issues.at(0).message.find(" to "), std::string::npos)
+                << e.issues.at(0).message;
+          }
+          if (ok) {
+            if (lo == 0) lo = x;
+            EXPECT_EQ(hi, 0) << "accepted again at " << x;
+          }
+        }
+        EXPECT_GT(lo, 0);
+        EXPECT_GT(hi, lo);
+      }
+    }
+  }
+}
+
+// The life lines ISO 6336-2 Table 2 and ISO 6336-3 Table 4 give each class:
+// the nitrided NV(nitr) shares NT's, only NV(nitrocar) has the 1.1 line;
+// Eh and IF take the limited-pitting line when limited pitting is allowed.
+TEST(Rating, LifeLinesByClass) {
+  GearMaterial m;
+  m.cls = MaterialClass::NV;
+  EXPECT_DOUBLE_EQ(static_factor(pitting_life_line(m, false)), 1.3);
+  EXPECT_DOUBLE_EQ(static_factor(bending_life_line(m)), 1.6);
+  m.nitrocarburised = true;
+  EXPECT_DOUBLE_EQ(static_factor(pitting_life_line(m, false)), 1.1);
+  EXPECT_DOUBLE_EQ(static_factor(bending_life_line(m)), 1.1);
+  m = GearMaterial{};
+  m.cls = MaterialClass::Eh;
+  EXPECT_DOUBLE_EQ(reference_cycles(pitting_life_line(m, true)), 1e9);
+  m.cls = MaterialClass::IF;
+  EXPECT_DOUBLE_EQ(reference_cycles(pitting_life_line(m, true)), 1e9);
+  m.cls = MaterialClass::GJL;
+  EXPECT_DOUBLE_EQ(reference_cycles(pitting_life_line(m, true)), 2e6);
+  m.cls = MaterialClass::St;
+  EXPECT_DOUBLE_EQ(static_factor(bending_life_line(m)), 2.5);
+}
+
+// Y_RrelT, ISO 6336-3:2006 Table 7: St on its own line (1.070 smooth), GJL
+// with the nitrided steels (1.025), the rest 1.120; all near 1 at the test
+// gear's R_z 10 um.
+TEST(Rating, RelativeSurfaceFactorByClass) {
+  GearMaterial m;
+  m.cls = MaterialClass::St;
+  EXPECT_DOUBLE_EQ(surface_factor(m, 0.5), 1.070);
+  EXPECT_NEAR(surface_factor(m, 10), 5.306 - 4.203 * std::pow(11.0, 0.01), 1e-12);
+  m.cls = MaterialClass::GJL;
+  EXPECT_DOUBLE_EQ(surface_factor(m, 0.5), 1.025);
+  EXPECT_NEAR(surface_factor(m, 10), 4.299 - 3.259 * std::pow(11.0, 0.0058), 1e-12);
+  m.cls = MaterialClass::V;
+  EXPECT_DOUBLE_EQ(surface_factor(m, 0.5), 1.120);
+}
+
 // The case-hardened line: 1.6 static at 1e5, 1 at the knee 5e7, 0.85 at
 // 1e10 (or 1 on the optimum line); bending 2.5 at 1e3, 1 at 3e6.
 TEST(Rating, LifeLinesOfCaseHardenedSteel) {
-  const LifeLine H = pitting_life_line(MaterialClass::Eh, false);
+  GearMaterial eh;
+  eh.cls = MaterialClass::Eh;
+  const LifeLine H = pitting_life_line(eh, false);
   EXPECT_DOUBLE_EQ(life_factor(H, 1e4, false), 1.6);
   EXPECT_NEAR(life_factor(H, 5e7, false), 1.0, 1e-12);
   EXPECT_NEAR(life_factor(H, 1e10, false), 0.85, 1e-12);
   EXPECT_NEAR(life_factor(H, 1e10, true), 1.0, 1e-12);
   // ISO's rounded exponent 0.0756 of (5e7/N) below the knee.
   EXPECT_NEAR(life_factor(H, 1e6, false), std::pow(5e7 / 1e6, 0.0756), 1e-3);
-  const LifeLine F = bending_life_line(MaterialClass::Eh);
+  const LifeLine F = bending_life_line(eh);
   EXPECT_DOUBLE_EQ(life_factor(F, 1e3, false), 2.5);
   EXPECT_NEAR(life_factor(F, 3e6, false), 1.0, 1e-12);
 }
@@ -208,7 +360,11 @@ TEST(Rating, RefusalsNameTheField) {
   doc["gears"][0]["material"]["iso6336_5"]["hardness_HB"] = 350;
   EXPECT_EQ(pointer_of(doc), "/gears/0/material/iso6336_5/hardness_HB");
   doc = paper_rack_pair(5000);
-  doc["gears"][1]["material"]["iso6336_5"] = {{"class", "St"}};
+  doc["gears"][1]["material"]["iso6336_5"] = {{"class", "St"}};  // no hardness
+  EXPECT_EQ(pointer_of(doc), "/gears/1/material/iso6336_5");
+  doc["gears"][1]["material"]["iso6336_5"] = {{"class", "V"}, {"hardness_HV", 300}};
+  EXPECT_EQ(pointer_of(doc), "/gears/1/material/iso6336_5");  // carbon or alloy?
+  doc["gears"][1]["material"]["iso6336_5"] = {{"class", "NV"}};
   EXPECT_EQ(pointer_of(doc), "/gears/1/material/iso6336_5/class");
   doc = paper_rack_pair(5000);
   doc["load"]["torque_N_m"] = 100;
@@ -316,6 +472,103 @@ TEST(Rating, AHeldStaticCheckNeedsTheServiceSpeed) {
   } catch (const InvalidJob& e) {
     EXPECT_EQ(e.issues.at(0).pointer, "/scene/rating");
   }
+}
+
+// A dynamic run's rating: ISO's K_v beside the measured one (the steady
+// mesh's peak over mean force), method B's safeties again with it; a run
+// without a steady mesh gets no measured K_v, with the reason.
+TEST(Rating, DynamicRunsMeasuredKvBesideIsos) {
+  const json doc = paper_rack_pair(5000);
+  const json b = rate_document(doc);
+  const double K_v_iso = b["factors"]["K_v"].get<double>();
+  const json steady = {{"steady", true}, {"K_v", 1.25}, {"steady_from_s", 0.01},
+                       {"steady_periods", 6}};
+  const json r = rating_from_dynamics(doc, steady);
+  EXPECT_DOUBLE_EQ(r["K_v"]["iso6336_1_method_B"].get<double>(), K_v_iso);
+  EXPECT_DOUBLE_EQ(r["K_v"]["measured"].get<double>(), 1.25);
+  const double S_F = b["bending"]["S_F"][0].get<double>();
+  const double S_H = b["pitting"]["S_H"][0].get<double>();
+  EXPECT_NEAR(r["with_measured_K_v"]["S_F"].get<double>(), S_F * K_v_iso / 1.25, 1e-12);
+  EXPECT_NEAR(r["with_measured_K_v"]["S_H"].get<double>(), S_H * std::sqrt(K_v_iso / 1.25), 1e-12);
+  EXPECT_NEAR(r["with_measured_K_v"]["sigma_F_Pa"].get<double>(),
+              b["bending"]["sigma_F_Pa"][0].get<double>() * 1.25 / K_v_iso, 1e-3);
+  EXPECT_EQ(r["governing"]["with"], "the measured K_v");
+  const json unsteady = {{"steady", false}, {"K_v", 1.7},
+                         {"note", "the mesh force never settled within 5 %"}};
+  const json u = rating_from_dynamics(doc, unsteady);
+  EXPECT_TRUE(u["K_v"]["measured"].is_null());
+  EXPECT_EQ(u["K_v"]["reason"], "the mesh force never settled within 5 %");
+  EXPECT_FALSE(u.contains("with_measured_K_v"));
+  EXPECT_EQ(u["governing"]["with"], "method B's K_v");
+}
+
+// The FE check's fillet peak and Hertz patch rated under the same factors
+// as the simulation: the same stresses for the same tooth force give the
+// same safeties; a fillet peak 2 % lower gives S_F 2 % higher.
+TEST(Rating, FeCheckRatedUnderTheSimulationsFactors) {
+  geometry::PinionSpec s;
+  s.teeth = 12;
+  s.tool.module_m = 4e-3;
+  s.tool.pressure_angle_rad = 20.0 * kPi / 180.0;
+  const geometry::PinionGeometry pinion(s);
+  const json iron = paper_rack_pair(5000)["gears"][0]["material"];
+  const json doc = rack_pinion_rating_document(pinion, 0.02, iron, iron, 5000.0, -15.0, json::object());
+  const double alpha = 20.0 * kPi / 180.0;
+  const json sc = {{"tooth0_force_N", 4000.0 / std::cos(alpha)},
+                   {"fillet_tension_peak_Pa", 2.0e8},
+                   {"iso_sigma_F0_Pa", 2.1e8},
+                   {"hertz_peak_pressure_Pa", 6.0e8},
+                   {"contact_point", "hpstc"}};
+  const json rating = rating_from_static_check(doc, sc);
+  const json fe = {{"fillet_tension_peak_Pa", 2.0e8 / 1.02},
+                   {"load",
+                    {{"normal_force_N", 4000.0 / std::cos(alpha)},
+                     {"tangential_force_N", 4000.0},
+                     {"load_radius_m", 0.026},
+                     {"hertz_peak_pressure_Pa", 6.0e8}}}};
+  const json r = rating_from_fe_check(rating, fe);
+  EXPECT_NEAR(r["S_F"].get<double>() / rating["simulated"]["S_F"].get<double>(), 1.02, 1e-12);
+  EXPECT_NEAR(r["S_F_difference"].get<double>(), 1.0 / 1.02 - 1.0, 1e-12);
+  EXPECT_NEAR(r["S_H_hertz"].get<double>(), rating["simulated"]["S_H_hertz"].get<double>(), 1e-12);
+  EXPECT_NEAR(r["S_H_difference"].get<double>(), 0.0, 1e-12);
+}
+
+// Defaults and the static check: required S_F 1.4 and S_H 1.0 unless the
+// document or the job's rating block says otherwise; the static safeties
+// use the life lines' static factors (GJS: Z_NT 1.6, Y_NT 2.5; Eh: Y_NT 2.5
+// from 1e3), equal the long-life ones rated at N <= 1e3 for the same
+// stress, and S_yield is the yield strength over the static fillet stress.
+TEST(Rating, StaticSafetyAndDefaultRequiredSafeties) {
+  json doc = paper_rack_pair(5000);
+  const json r = rate_document(doc);
+  EXPECT_DOUBLE_EQ(r["bending"]["required_S_F"].get<double>(), 1.4);
+  EXPECT_DOUBLE_EQ(r["pitting"]["required_S_H"].get<double>(), 1.0);
+  EXPECT_DOUBLE_EQ(r["static"]["Z_NT"][0].get<double>(), 1.6);
+  EXPECT_DOUBLE_EQ(r["static"]["Y_NT"][0].get<double>(), 2.5);
+  EXPECT_NEAR(r["static"]["S_yield"][0].get<double>(),
+              4.2e8 / r["static"]["sigma_F_Pa"][0].get<double>(), 1e-9);
+  // The static load K_A F_t without K_v; rated at 1e3 cycles with a static
+  // load of K_v F_t the static and the service stresses are the same, and
+  // so are the safeties.
+  const double K_v = r["factors"]["K_v"].get<double>();
+  doc["load"].erase("life_h");
+  doc["load"]["cycles"] = {1e3, 1e3};
+  doc["load"]["static_tangential_force_N"] = 5000.0 * K_v;
+  const json at_static = rate_document(doc);
+  EXPECT_NEAR(at_static["bending"]["S_F"][0].get<double>(),
+              at_static["static"]["S_F"][0].get<double>(), 1e-9);
+  EXPECT_NEAR(at_static["pitting"]["S_H"][0].get<double>(),
+              at_static["static"]["S_H"][0].get<double>(), 1e-9);
+  // The job's rating block: defaults 1.4 / 1.0 in analysis.rating too.
+  geometry::PinionSpec s;
+  s.teeth = 12;
+  s.tool.module_m = 4e-3;
+  s.tool.pressure_angle_rad = 20.0 * kPi / 180.0;
+  const geometry::PinionGeometry pinion(s);
+  const json iron = doc["gears"][0]["material"];
+  const json job_doc = rack_pinion_rating_document(pinion, 0.02, iron, iron, 5000.0, -15.0, json::object());
+  EXPECT_DOUBLE_EQ(job_doc["required_safety"]["S_F"].get<double>(), 1.4);
+  EXPECT_DOUBLE_EQ(job_doc["required_safety"]["S_H"].get<double>(), 1.0);
 }
 
 // `gearsph rate`: the verdict as JSON on stdout, exit 0; a refused document

@@ -4,7 +4,9 @@
 // under two mesh periods must say it reached no steady mesh, read the mesh
 // frequency from the hub's rate, and measure its start's ringing; the
 // ringing's frequency against the lumped model's is recorded, not held to
-// a bound (docs/dynamics.md: 0.66 of it here, 0.86 in a 6 ms run).
+// a bound (docs/dynamics.md: 0.66 of it here, 0.86 in a 6 ms run). Its
+// material carries strength (the default iron's constants with GJS 250 HB),
+// so the run is rated: ISO's K_v, and no measured one, with the reason.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,6 +25,11 @@ TEST(MeshDynamics, ShortRunSaysItIsNotSteadyAndRingsOnTheMeshMode) {
                     {"scene",
                      {{"type", "rack_pinion"},
                       {"pinion", {{"omega_rad_s", -300.0}}},
+                      {"material",
+                       {{"E_Pa", 1.73e11},
+                        {"nu", 0.3},
+                        {"rho_kg_m3", 7800},
+                        {"iso6336_5", {{"class", "GJS"}, {"hardness_HB", 250}}}}},
                       {"rack", {{"velocity_m_s", -7.2}, {"load_N", 5000.0}}}}},
                     {"discretization", {{"particles", "lattice"}, {"spacing_mm", 1.0}}},
                     {"time", {{"end_s", 0.003}}},
@@ -48,6 +55,12 @@ TEST(MeshDynamics, ShortRunSaysItIsNotSteadyAndRingsOnTheMeshMode) {
   EXPECT_GT(f_ring, 0.5 * f_iso);
   EXPECT_LT(f_ring, 1.5 * f_ideal);
   EXPECT_GT(ring.at("damping_ratio").get<double>(), 0.0);
+  // Rated: method B's K_v at 2865 rpm; the measured one null, with why.
+  const json& kv = r.summary.at("analysis").at("rating").at("K_v");
+  EXPECT_GT(kv.at("iso6336_1_method_B").get<double>(), 1.0);
+  EXPECT_TRUE(kv.at("measured").is_null());
+  EXPECT_NE(kv.at("reason").get<std::string>().find("no steady mesh"), std::string::npos);
+  RecordProperty("K_v_iso", std::to_string(kv.at("iso6336_1_method_B").get<double>()));
 }
 
 }  // namespace

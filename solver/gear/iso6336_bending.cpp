@@ -124,9 +124,12 @@ double notch_sensitivity_factor(const GearMaterial& m, double q_s) {
 
 double surface_factor(const GearMaterial& m, double Rz) {
   const bool smooth = Rz < 1.0;
+  // ISO 6336-3:2006, Table 7: St its own line; GJL with the nitrided
+  // steels; V, GJS, GTS, Eh, IF the third.
   switch (m.cls) {
-    case MaterialClass::GJL:
+    case MaterialClass::St:
       return smooth ? 1.070 : 5.306 - 4.203 * std::pow(Rz + 1.0, 0.01);
+    case MaterialClass::GJL:
     case MaterialClass::NT:
     case MaterialClass::NV:
       return smooth ? 1.025 : 4.299 - 3.259 * std::pow(Rz + 1.0, 0.0058);

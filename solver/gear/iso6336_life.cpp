@@ -29,28 +29,34 @@ double log_log(const std::vector<double>& xs, const std::vector<double>& ys, dou
 
 }  // namespace
 
-LifeLine pitting_life_line(MaterialClass c, bool limited_pitting) {
-  switch (c) {
+// ISO 6336-2:2006, Table 2. Limited pitting permitted: St, V, GJS, GTS and
+// the case-carburised and flame or induction hardened steels (Eh, IF) alike.
+// GJL and the nitrided steels (NT, NV(nitr)) share the 1.3 line; only the
+// nitrocarburised NV(nitrocar) has the 1.1 one.
+LifeLine pitting_life_line(const GearMaterial& m, bool limited_pitting) {
+  switch (m.cls) {
     case MaterialClass::St:
     case MaterialClass::V:
     case MaterialClass::GJS:
     case MaterialClass::GTS:
-      if (limited_pitting) return {{6e5, 1e7, 1e9}, {1.6, 1.3, 1.0}};
-      return {{1e5, 5e7}, {1.6, 1.0}};
     case MaterialClass::Eh:
     case MaterialClass::IF:
+      if (limited_pitting) return {{6e5, 1e7, 1e9}, {1.6, 1.3, 1.0}};
       return {{1e5, 5e7}, {1.6, 1.0}};
     case MaterialClass::GJL:
     case MaterialClass::NT:
       return {{1e5, 2e6}, {1.3, 1.0}};
-    case MaterialClass::NV:  // nitrocarburised: the lowest static factor
-      return {{1e5, 2e6}, {1.1, 1.0}};
+    case MaterialClass::NV:
+      if (m.nitrocarburised) return {{1e5, 2e6}, {1.1, 1.0}};
+      return {{1e5, 2e6}, {1.3, 1.0}};
   }
   return {{1e5, 5e7}, {1.6, 1.0}};
 }
 
-LifeLine bending_life_line(MaterialClass c) {
-  switch (c) {
+// ISO 6336-3:2006, Table 4: NV(nitr) with NT and GJL (1.6 at 1e3), the
+// nitrocarburised NV(nitrocar) alone at 1.1.
+LifeLine bending_life_line(const GearMaterial& m) {
+  switch (m.cls) {
     case MaterialClass::St:
     case MaterialClass::V:
     case MaterialClass::GJS:
@@ -63,7 +69,8 @@ LifeLine bending_life_line(MaterialClass c) {
     case MaterialClass::NT:
       return {{1e3, 3e6}, {1.6, 1.0}};
     case MaterialClass::NV:
-      return {{1e3, 3e6}, {1.1, 1.0}};
+      if (m.nitrocarburised) return {{1e3, 3e6}, {1.1, 1.0}};
+      return {{1e3, 3e6}, {1.6, 1.0}};
   }
   return {{1e4, 3e6}, {2.5, 1.0}};
 }

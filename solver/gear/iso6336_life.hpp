@@ -22,9 +22,11 @@ struct LifeLine {
 inline constexpr double kLongLifeCycles = 1e10;
 inline constexpr double kLongLifeFactor = 0.85;
 
-// limited_pitting: the St/V/GJS/GTS line with limited pitting permitted.
-LifeLine pitting_life_line(MaterialClass c, bool limited_pitting);
-LifeLine bending_life_line(MaterialClass c);
+// The material's line by its class (NV(nitr) and NV(nitrocar) apart).
+// limited_pitting: the St/V/GJS/GTS/Eh/IF line with limited pitting
+// permitted (ISO 6336-2:2006, Table 2, first row).
+LifeLine pitting_life_line(const GearMaterial& m, bool limited_pitting);
+LifeLine bending_life_line(const GearMaterial& m);
 
 double life_factor(const LifeLine& line, double cycles, bool optimum);
 double static_factor(const LifeLine& line);

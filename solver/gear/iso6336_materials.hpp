@@ -6,6 +6,7 @@
 // life-factor lines (ISO 6336-2/-3), running-in allowances (ISO 6336-1),
 // size and notch-sensitivity factors (ISO 6336-3).
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -23,9 +24,17 @@ enum class MaterialClass { St, V, GJS, GTS, GJL, Eh, IF, NT, NV };
 bool surface_hardened(MaterialClass c);
 const char* class_name(MaterialClass c);
 
+// The names a material's iso6336_5.class takes: ISO 6336-5:2016 Table 8's
+// abbreviations, St(cast) and V(cast) for the cast steels of the St and V
+// lines, NV(nitr) and NV(nitrocar) for the nitrided and the nitrocarburised
+// through-hardening steels (their life lines differ too).
+const std::vector<std::string>& class_labels();
+
 struct GearMaterial {
   double E_Pa = 0.0, nu = 0.0, rho_kg_m3 = 0.0;
   MaterialClass cls = MaterialClass::St;
+  std::string class_label = "St";  // as given: St, St(cast), V, V(cast), ..., NV(nitrocar)
+  bool nitrocarburised = false;    // NV(nitrocar): its own life lines (ISO 6336-2, -3)
   std::string quality = "MQ";  // ML, MQ or ME (ISO 6336-5:2016, clause 4)
   double hardness_HB = 0.0;    // 0: not given
   double hardness_HV = 0.0;

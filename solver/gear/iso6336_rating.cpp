@@ -86,7 +86,7 @@ ModeResult pitting(const RatingInput& in, const Mesh& m, json& factors, json& ou
   for (int k = 0; k < 2; ++k) {
     r.sigma[k] = Z_BD[k] * sigma_H0 * std::sqrt(K);
     r.sigma_static_load[k] = r.sigma[k] * std::sqrt(static_ratio(in, m));
-    r.line[k] = pitting_life_line(in.mat[k].cls, in.limited_pitting);
+    r.line[k] = pitting_life_line(in.mat[k], in.limited_pitting);
     // Static: Z_L Z_v Z_R = 1 and Z_X = 1; the reference: all of them.
     r.G_static[k] = in.mat[k].sigma_Hlim_Pa * static_factor(r.line[k]) * Z_W[k];
     r.G_ref[k] = in.mat[k].sigma_Hlim_Pa * Z_L * Z_v * Z_R * Z_W[k] * kZ_X;
@@ -142,7 +142,7 @@ ModeResult bending(const RatingInput& in, const Mesh& m, json& factors, json& ou
     const double Y_X = size_factor(in.mat[k], s.m_n);
     r.sigma[k] = s0 * K;
     r.sigma_static_load[k] = r.sigma[k] * static_ratio(in, m);
-    r.line[k] = bending_life_line(in.mat[k].cls);
+    r.line[k] = bending_life_line(in.mat[k]);
     // Static: Y_deltarelT, Y_RrelT and Y_X taken as 1 (docs/rating.md).
     r.G_static[k] = in.mat[k].sigma_Flim_Pa * kY_ST * static_factor(r.line[k]);
     r.G_ref[k] = in.mat[k].sigma_Flim_Pa * kY_ST * Y_d * Y_R * Y_X;
@@ -282,7 +282,7 @@ nlohmann::json rate(const RatingInput& in) {
   const ModeResult F = bending(in, m, factors, bend);
   json materials = json::array();
   for (const GearMaterial& g : in.mat) {
-    materials.push_back({{"class", class_name(g.cls)},
+    materials.push_back({{"class", g.class_label},
                          {"quality", g.quality},
                          {"sigma_Hlim_Pa", g.sigma_Hlim_Pa},
                          {"sigma_Flim_Pa", g.sigma_Flim_Pa},

@@ -29,4 +29,19 @@ nlohmann::json rack_pinion_rating_document(const geometry::PinionGeometry& pinio
 nlohmann::json rating_from_static_check(const nlohmann::json& document,
                                         const nlohmann::json& static_check);
 
+// analysis.rating of a loaded dynamic run (the analysis' dynamics block):
+// method B's verdict for the job's pair, load and speed, with ISO's K_v
+// beside the one the run measured (peak over mean mesh force over its
+// steady mesh, analysis.dynamics.K_v), and method B's safeties again with
+// the measured K_v in place of ISO's. A run that never reached a steady
+// mesh gets a null measured K_v with the reason, never an estimate.
+nlohmann::json rating_from_dynamics(const nlohmann::json& document,
+                                    const nlohmann::json& dynamics);
+
+// analysis.rating.fe_check: the FE check's fillet tension peak and its
+// Hertz patch pressure (fe_summary.json, for the FE's own load on tooth 0)
+// rated under the factors and permissible stresses of `rating` (a static
+// check's analysis.rating), beside the simulation's S_F and S_H.
+nlohmann::json rating_from_fe_check(const nlohmann::json& rating, const nlohmann::json& fe_summary);
+
 }  // namespace gearsph::gear::iso6336

@@ -585,6 +585,9 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
   // A loaded dynamic run: its steady mesh and the lumped model beside it.
   if (!L.quasi_static && (L.load_N > 0 || L.torque_Nm) && h.rows() > 1) {
     a["dynamics"] = analyse_mesh_dynamics(L, h);
+    if (!L.rating_document.is_null()) {
+      a["rating"] = gear::iso6336::rating_from_dynamics(L.rating_document, a["dynamics"]);
+    }
   }
 
   const PeakPressure p = peak_contact_pressure(L, h, t);

@@ -59,4 +59,12 @@ test("the strength fields add an ISO 6336-5 material only when a class is chosen
   assert.equal(jobFromValues([[cls, ""], [spec("/scene/material/iso6336_5/hardness_HB"), ""]]).scene.material, undefined);
   const job = jobFromValues([[cls, "GJS"], [spec("/scene/material/iso6336_5/hardness_HB"), "250"]]);
   assert.deepEqual(job.scene.material.iso6336_5, { class: "GJS", hardness_HB: 250 });
+  // Every class of ISO 6336-5:2016 Table 8 is offered, with the V steels' kind
+  // and the Vickers hardness the steels' lines are read in.
+  for (const c of ["St", "St(cast)", "GTS", "GJS", "GJL", "V", "V(cast)", "Eh", "IF", "NT", "NV(nitr)", "NV(nitrocar)"]) {
+    assert.ok(fieldSchema(schema, cls.pointer).node.enum.includes(c), c);
+  }
+  const v = jobFromValues([[cls, "V"], [spec("/scene/material/iso6336_5/steel"), "alloy"],
+    [spec("/scene/material/iso6336_5/hardness_HV"), "300"]]);
+  assert.deepEqual(v.scene.material.iso6336_5, { class: "V", steel: "alloy", hardness_HV: 300 });
 });

@@ -10,7 +10,7 @@ export function verdictPanel(summary) {
   const r = summary.analysis.rating;
   return h("section", { class: "panel", id: "verdict", "aria-labelledby": "verdict-head" },
     h("header", {}, h("h2", { id: "verdict-head" }, "Verdict"),
-      h("span", { class: "muted" }, `governing: ${rows[0].mode.toLowerCase()}; contact at ${r.load_point}`)),
+      h("span", { class: "muted" }, `governing: ${rows[0].mode.toLowerCase()}; ${r.load_point ? `contact at ${r.load_point}` : "a dynamic run"}`)),
     h("div", { class: "body" }, h("table", { class: "summary-table" }, h("tbody", {},
       rows.map((row) => h("tr", { class: `verdict ${row.level}` },
         h("td", {}, row.mode),

@@ -31,7 +31,9 @@ export const GROUPS = [
   ["Strength (ISO 6336-5, for the rating)", [
     { pointer: "/scene/material/iso6336_5/class", label: "Class", type: "enum", optional: true },
     { pointer: "/scene/material/iso6336_5/quality", label: "Quality", type: "enum", optional: true },
-    { pointer: "/scene/material/iso6336_5/hardness_HB", label: "Hardness HB", optional: true },
+    { pointer: "/scene/material/iso6336_5/steel", label: "Steel (V, V(cast))", type: "enum", optional: true },
+    { pointer: "/scene/material/iso6336_5/hardness_HB", label: "Hardness HB", placeholder: "St, GTS, GJS, GJL", optional: true },
+    { pointer: "/scene/material/iso6336_5/hardness_HV", label: "Hardness HV", placeholder: "V, Eh, IF, NT, NV", optional: true },
     { pointer: "/scene/material/sigma_Hlim_Pa", label: "σ_Hlim", placeholder: "from the class", optional: true },
     { pointer: "/scene/material/sigma_Flim_Pa", label: "σ_Flim", placeholder: "from the class", optional: true },
     { pointer: "/scene/material/yield_Pa", label: "Yield strength", optional: true },
