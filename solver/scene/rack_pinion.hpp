@@ -56,6 +56,7 @@ struct GearLayout {
   double play_m = 0.0;
   // ISO 6336-1 method B at the run's speed and load (loaded runs only).
   std::optional<gear::dynamics::IsoDynamics> iso_dynamics;
+  std::string iso_dynamics_note;  // why there is none (outside ISO 6336-1 method B)
   // Static checks: where tooth 0 is loaded ("pitch", "hpstc", "lpstc",
   // "tip" or "radius") and the radius on the pinion [m].
   std::string contact_point;
