@@ -8,6 +8,7 @@
 #include "fe/gmsh_mesher.hpp"
 #include "fe/tri_mesh.hpp"
 #include "solver/geometry/gear_profile.hpp"
+#include "solver/geometry/mesh_placement.hpp"
 #include "solver/geometry/rack_profile.hpp"
 
 namespace gearsph::fe {
@@ -22,7 +23,8 @@ RackFeResult solve_rack_fe(const GearFeCase& c, const GearLoadPatch& load, doubl
                            const FeTools& tools, const std::filesystem::path& work_dir,
                            const std::string& name, int threads, double timeout_s) {
   geometry::RackSpec rs;
-  rs.profile = c.pinion.tool;
+  // The static check's rack (geometry/mesh_placement.hpp): the same root.
+  rs.profile = geometry::static_check_rack_profile(geometry::PinionGeometry(c.pinion));
   rs.teeth = 1;
   rs.back_thickness_m = c.rack_back_m > 0.0 ? c.rack_back_m : 2.0 * rs.profile.module_m;
   rs.backlash_m = c.rack_backlash_m;

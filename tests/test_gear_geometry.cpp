@@ -541,6 +541,31 @@ TEST(GearGeometry, ShiftedPinionSitsAtCentreDistanceRPlusXm) {
   EXPECT_LT(gap, 0.5 * kMicron);  // tight mesh
 }
 
+// A static check's rack keeps its straight flank 0.05 m below where the
+// pinion's tip reaches (a standard tip: 1.0 m below the datum line at any
+// shift). ISO 53 A at 20 degrees ends it at 0.99996 m, inside the tip's
+// reach, so its root fillet shrinks to (1.25 - 1.05) / (1 - sin 20 deg) =
+// 0.304 m; at 16 degrees to 0.276 m; at 25 degrees the default tool's 0.29 m
+// already clears (its flank ends at 1.083 m) and is kept.
+TEST(GearGeometry, AStaticChecksRackKeepsItsFlankBelowThePinionsTip) {
+  for (const double x : {-0.35, 0.0, 0.5}) {
+    const PinionGeometry pinion(pinion_spec(25, 3.5e-3, 20.0, x));
+    EXPECT_NEAR(tip_reach_below_datum(pinion), 3.5e-3, 1e-12) << x;
+    const BasicRack rack = static_check_rack_profile(pinion);
+    EXPECT_NEAR(rack.root_radius_coef, 0.2 / (1.0 - std::sin(20.0 * std::numbers::pi / 180.0)),
+                1e-9)
+        << x;
+    EXPECT_NEAR(rack.straight_flank_depth(), 1.05 * 3.5e-3, 1e-12) << x;
+  }
+  const PinionGeometry low(pinion_spec(57, 3.25e-3, 16.0, -0.25));
+  EXPECT_NEAR(static_check_rack_profile(low).root_radius_coef,
+              0.2 / (1.0 - std::sin(16.0 * std::numbers::pi / 180.0)), 1e-9);
+  PinionSpec wide = pinion_spec(25, 3.5e-3, 25.0, 0.0);
+  wide.tool.root_radius_coef = wide.tool.default_root_radius_coef(0.0);
+  const PinionGeometry steep(wide);
+  EXPECT_EQ(static_check_rack_profile(steep).root_radius_coef, wide.tool.root_radius_coef);
+}
+
 // ---------------------------------------------------------------------------
 // Polygon helpers and lattice fill
 

@@ -240,6 +240,39 @@ TEST(Jobs, AResolvedContactIsAskedOnlyWhereItApplies) {
       << describe(issues);
 }
 
+// A pinion of contact ratio below 1 (z 11, m 9, 21 degrees, x -0.3:
+// 0.95) is outside what ISO 6336 method B rates. A static check of it that
+// asks for no rating runs, and says why it is not rated when its materials
+// carry strength; one that asks for a rating is refused at /scene/rating.
+// Before, every such static check was refused (ISO 6336-1's K_v beside the
+// lumped model refused the pair), and the accuracy map lost the case.
+TEST(Jobs, AStaticCheckOutsideTheRatingRunsUnrated) {
+  json job = {{"scene",
+               {{"type", "rack_pinion"},
+                {"quasi_static", true},
+                {"contact_point", "hpstc"},
+                {"pinion",
+                 {{"module_mm", 9.0},
+                  {"teeth", 11},
+                  {"pressure_angle_deg", 21.0},
+                  {"profile_shift", -0.3},
+                  {"backlash_mm", 0.0},
+                  {"omega_rad_s", 0.0}}},
+                {"rack", {{"velocity_m_s", 0.0}, {"load_N", 6600.0}}}}},
+              {"output", {{"frames", 0}}}};
+  EXPECT_NO_THROW(prepare_job(job, 1));
+  job["scene"]["material"] = {
+      {"E_Pa", 1.73e11},
+      {"nu", 0.3},
+      {"rho_kg_m3", 7800},
+      {"iso6336_5", {{"class", "GJS"}, {"quality", "MQ"}, {"hardness_HB", 250}}}};
+  job["scene"]["pinion"]["omega_rad_s"] = 1.0;  // a speed for K_v
+  EXPECT_NO_THROW(prepare_job(job, 1));
+  job["scene"]["rating"] = json::object();
+  auto issues = issues_of(job);
+  EXPECT_TRUE(has_issue(issues, "/scene/rating", "contact ratio")) << describe(issues);
+}
+
 // ISO 53's cutter tip radius (0.38 modules) does not fit a 25-degree tooth
 // space at the standard depths: a job that gives none gets nine tenths of
 // the largest that fits both the pinion's and the rack's space, and says so;

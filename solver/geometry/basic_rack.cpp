@@ -12,6 +12,12 @@ double BasicRack::straight_flank_depth() const {
   return dedendum() - root_radius() * (1.0 - std::sin(pressure_angle_rad));
 }
 
+// The straight flank ends at h_fP - rho (1 - sin alpha): solve for rho.
+double BasicRack::root_radius_clearing(double reach, double clearance) const {
+  const double largest = (dedendum() - reach - clearance) / (1.0 - std::sin(pressure_angle_rad));
+  return std::clamp(largest, 0.0, root_radius());
+}
+
 // Fillet centre at depth h_fP - rho on the space side of the flank; it reaches
 // the space centre line when (p/4 + w/2) - (h_fP - rho) tan(alpha) = rho / cos(alpha).
 double BasicRack::max_root_radius(double widening) const {

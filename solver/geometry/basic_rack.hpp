@@ -35,6 +35,11 @@ struct BasicRack {
   // A's 0.38, or nine tenths of the largest that fits where that does not
   // (a 25-degree pressure angle at the standard depths: 0.29).
   double default_root_radius_coef(double widening) const;
+  // The mating rack's root fillet radius [m] that keeps its straight flank
+  // at least `clearance` [m] below the depth `reach` [m] a pinion's tip
+  // enters below the datum line: the profile's own where that clears, else
+  // the largest that does (0 at most: a sharp root corner).
+  double root_radius_clearing(double reach, double clearance) const;
   // Throws std::invalid_argument naming the first bad value.
   void validate(double widening) const;
 };

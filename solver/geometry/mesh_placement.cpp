@@ -6,6 +6,20 @@
 
 namespace gearsph::geometry {
 
+double tip_reach_below_datum(const PinionGeometry& pinion) {
+  const BasicRack& t = pinion.spec().tool;
+  return pinion.tip_radius() - pinion.pitch_radius() - pinion.spec().profile_shift * t.module_m;
+}
+
+BasicRack static_check_rack_profile(const PinionGeometry& pinion) {
+  constexpr double kRootClearanceModules = 0.05;
+  BasicRack rack = pinion.spec().tool;
+  const double clear = rack.root_radius_clearing(tip_reach_below_datum(pinion),
+                                                 kRootClearanceModules * rack.module_m);
+  rack.root_radius_coef = clear / rack.module_m;
+  return rack;
+}
+
 MeshPlacement place_in_mesh(const PinionGeometry& pinion, const RackGeometry& rack,
                             Point pinion_centre, int pinion_tooth, int rack_space,
                             double travel_m) {

@@ -28,6 +28,22 @@ struct MeshPlacement {
   double rolling_line_y = 0.0;   // world y of the rack's rolling line
 };
 
+// The depth below the rack's datum line that the pinion's tip circle
+// reaches in mesh: r_a - (r + x m) (h_aP = 1.0 m for a standard tip at any
+// shift).
+double tip_reach_below_datum(const PinionGeometry& pinion);
+
+// The profile of a rack a static check loads against the pinion: the
+// pinion's tool, its root fillet kept a twentieth of a module below the
+// pinion tip's reach. ISO 53 A's straight flank ends 4e-5 m above a standard
+// tip's reach (h_fP - rho_fP (1 - sin alpha) = 0.99996 m at 20 degrees) and
+// above it at smaller pressure angles, so the tip corner met the rack's root
+// fillet where it meets the flank: its force turned radial and put tooth 0's
+// load 26 % above the rack's at the tip (docs/validation.md, "Wedged racks").
+// 0.05 m keeps the flank particle at the tip's reach off the fillet at the
+// default spacings (a flank spacing is 0.1-0.2 m).
+BasicRack static_check_rack_profile(const PinionGeometry& pinion);
+
 MeshPlacement place_in_mesh(const PinionGeometry& pinion, const RackGeometry& rack,
                             Point pinion_centre, int pinion_tooth, int rack_space,
                             double travel_m = 0.0);

@@ -327,7 +327,7 @@ geometry::RackGeometry build_rack(const nlohmann::json& rj, const GearLayout& L,
                                   const geometry::PinionGeometry& pinion,
                                   const ModelledTeeth& teeth, double support) {
   geometry::RackSpec rs;
-  rs.profile = pinion.spec().tool;
+  rs.profile = L.quasi_static ? geometry::static_check_rack_profile(pinion) : pinion.spec().tool;
   rs.teeth = teeth.rack_offsets.back() - teeth.rack_offsets.front() + 1;
   // Two modules unless given: the rack's body, like the pinion's rim,
   // follows the teeth (a fixed 8 mm made a module-3 rack's share of the mesh
@@ -649,6 +649,24 @@ void attach_rack_mass(Simulation& sim, GearLayout& L, double attached_kg) {
   if (guided > 0.0) sim.motions[2].inertia_scale = 1.0 + attached_kg / L.face_width_m / guided;
 }
 
+// The resisting force on the rack back acts against its motion: along +x
+// for a rack at rest or moving back, -x for one moving forward.
+double rack_load_direction(const GearLayout& L) {
+  return L.rack_velocity <= 0 ? 1.0 : -1.0;
+}
+
+// A static check's rack touches the pinion through the flanks its load
+// drives into the pinion alone. Its reverse flanks move away from the
+// pinion's as the load deflects the mesh, so in the physics they carry
+// nothing; without backlash they start touching, and the particles' contact
+// there held a wedge's preload that put tooth 0's force 15-130 % above the
+// load on the accuracy map (docs/validation.md, "Wedged racks"). A dynamic
+// run keeps both sides: its rack can reverse into the other flanks.
+std::array<double, 2> rack_contact_side(const GearLayout& L) {
+  if (!L.quasi_static) return {0.0, 0.0};
+  return {rack_load_direction(L), 0.0};
+}
+
 // Resisting force on the rack back, against its motion, per unit thickness.
 void load_rack_back(Simulation& sim, const GearLayout& L) {
   Particles& p = sim.particles;
@@ -657,7 +675,7 @@ void load_rack_back(Simulation& sim, const GearLayout& L) {
   for (std::size_t i = rack_body.begin; i < rack_body.end; ++i) {
     if (p.motion[i] == 2) ++n_back;
   }
-  const double load_dir = L.rack_velocity <= 0 ? 1.0 : -1.0;
+  const double load_dir = rack_load_direction(L);
   for (std::size_t i = rack_body.begin; i < rack_body.end; ++i) {
     if (p.motion[i] == 2) {
       p.load_ax[i] = load_dir * L.load_N / L.face_width_m / static_cast<double>(n_back) / p.mass[i];
@@ -797,6 +815,7 @@ nlohmann::json describe_rack(const Simulation& sim, const GearLayout& L,
   return {{"modelled_teeth", rack.spec().teeth},
           {"bulk_spacing_m", L.spacing},
           {"pitch_m", rack.pitch()},
+          {"root_radius_m", rack.spec().profile.root_radius()},
           {"back_thickness_m", rack.spec().back_thickness_m - support},
           {"guided_layer_m", support},
           {"guided_back_particles", guided},
@@ -819,9 +838,13 @@ nlohmann::json describe_mesh(const Simulation& sim, const nlohmann::json& s, con
                                           : nlohmann::json(false)}};
 }
 
-// A static check of a pair whose materials carry strength is rated
-// (analysis.rating); a rating that cannot be had is refused before the run.
-nlohmann::json rating_document_of(const nlohmann::json& s, const GearLayout& L,
+// A run of a pair whose materials carry strength is rated (analysis.rating).
+// A rating the job asks for (scene.rating) that cannot be had is refused
+// before the run, as is one that lacks the speed a held pinion needs. One
+// that only follows from the materials' strength, for a pair outside what
+// ISO 6336 method B rates (a contact ratio of 1 or below), leaves the run
+// to go on and says why there is no rating: the tooth is still one to check.
+nlohmann::json rating_document_of(const nlohmann::json& s, GearLayout& L,
                                   const geometry::PinionGeometry& pinion) {
   const nlohmann::json& pm =
       s.contains("pinion_material") ? s.at("pinion_material") : s.at("material");
@@ -841,8 +864,14 @@ nlohmann::json rating_document_of(const nlohmann::json& s, const GearLayout& L,
     return doc;
   } catch (const gear::iso6336::InvalidRating& e) {
     const std::string& p = e.issues.at(0).pointer;
-    throw JobError(p == "/load/speed_rpm" ? "/scene/rating/speed_rpm" : "/scene/rating",
-                   e.issues.at(0).message);
+    const std::string pointer =
+        p == "/load/speed_rpm" ? "/scene/rating/speed_rpm" : "/scene/rating";
+    // A speed the job can give is asked for; a pair outside method B's scope
+    // cannot be mended by a field, so its check runs unrated.
+    if (s.contains("rating") || p == "/load/speed_rpm")
+      throw JobError(pointer, e.issues.at(0).message);
+    L.rating_refusal = {{"pointer", pointer}, {"message", e.issues.at(0).message}};
+    return nullptr;
   }
 }
 
@@ -948,9 +977,16 @@ Scene build_rack_pinion(const SceneInput& in) {
       grown_bounds(sim.particles, 4.0 * L.tip_radius + std::abs(L.rack_velocity) * L.end_s);
   const double omega_mesh = set_mesh_dynamics(scene, L, pinion, mat_p, mat_r);
   if (L.load_N > 0.0) {
-    L.iso_dynamics = gear::dynamics::iso_rack_pinion_dynamics(pinion, L.face_width_m, mat_p.E,
-                                                              mat_r.E, mat_p.rho0, L.load_N,
-                                                              std::abs(L.omega) * 30.0 / kPi);
+    // ISO 6336-1's K_v beside the lumped model, where method B applies: a
+    // pair of contact ratio 1 or below is still a mesh to simulate (the
+    // accuracy map's z 11, 21 degrees, x -0.3 has 0.95), without it.
+    try {
+      L.iso_dynamics = gear::dynamics::iso_rack_pinion_dynamics(pinion, L.face_width_m, mat_p.E,
+                                                                mat_r.E, mat_p.rho0, L.load_N,
+                                                                std::abs(L.omega) * 30.0 / kPi);
+    } catch (const gear::iso6336::InvalidRating& e) {
+      L.iso_dynamics_note = e.issues.at(0).message;
+    }
   }
 
   const double turned = place.pinion.angle;  // tooth 0's axis is at -pi/2 + turned
@@ -964,6 +1000,7 @@ Scene build_rack_pinion(const SceneInput& in) {
 
   scene.outlines.push_back(polygon_outline("pinion", 0, outlines.pinion));
   scene.outlines.push_back(polygon_outline("rack", 1, outlines.rack));
+  scene.outlines.back().contact_side = rack_contact_side(L);
   if (!L.quasi_static) scene.default_end_s = 0.04;  // static checks: relax_to_static's
   // The seed paper's step for its lattice, so that its case runs as
   // published; body-fitted particles take the automatic step, 80 % of the

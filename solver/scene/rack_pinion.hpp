@@ -56,6 +56,7 @@ struct GearLayout {
   double play_m = 0.0;
   // ISO 6336-1 method B at the run's speed and load (loaded runs only).
   std::optional<gear::dynamics::IsoDynamics> iso_dynamics;
+  std::string iso_dynamics_note;  // why there is none (outside ISO 6336-1 method B)
   // Static checks: where tooth 0 is loaded ("pitch", "hpstc", "lpstc",
   // "tip" or "radius") and the radius on the pinion [m].
   std::string contact_point;
@@ -82,6 +83,9 @@ struct GearLayout {
   // The ISO 6336 rating document of a loaded pair whose materials carry
   // strength (gear/iso6336_simulated.hpp); null: no analysis.rating.
   nlohmann::json rating_document;
+  // Why a job that asked for no rating is not rated (its pair is outside
+  // what ISO 6336 method B rates): {pointer, message}, or null.
+  nlohmann::json rating_refusal;
 };
 
 // Particles of no modelled tooth (hub ring, rack) are marked with a number

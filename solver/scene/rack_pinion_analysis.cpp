@@ -508,6 +508,17 @@ nlohmann::json static_linearity(const History& h) {
            "is read in the load ramp"}};
 }
 
+// A run whose materials carry strength but whose pair ISO 6336 method B
+// cannot rate (rack_pinion.cpp, rating_document_of) says why.
+void say_why_not_rated(nlohmann::json& a, const GearLayout& L) {
+  if (L.rating_refusal.is_null()) return;
+  a["rating"] = {{"status", "not_rated"},
+                 {"reason", L.rating_refusal.at("message")},
+                 {"pointer", L.rating_refusal.at("pointer")}};
+  a["warnings"].push_back("rating: not rated, " +
+                          L.rating_refusal.at("message").get<std::string>());
+}
+
 // A static check answers for tooth 0 loaded alone. Where it carries less
 // than half the rack's load, the load went elsewhere (other rack teeth
 // meeting its neighbours, or none meeting its driving flank: a rack count of
@@ -573,6 +584,8 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
     a["static_check"] = sc;
     if (!L.rating_document.is_null()) {
       a["rating"] = gear::iso6336::rating_from_static_check(L.rating_document, sc);
+    } else {
+      say_why_not_rated(a, L);
     }
   }
 
@@ -581,6 +594,8 @@ nlohmann::json analyse_rack_pinion(const GearLayout& L, const History& h,
     a["dynamics"] = analyse_mesh_dynamics(L, h);
     if (!L.rating_document.is_null()) {
       a["rating"] = gear::iso6336::rating_from_dynamics(L.rating_document, a["dynamics"]);
+    } else {
+      say_why_not_rated(a, L);
     }
   }
 

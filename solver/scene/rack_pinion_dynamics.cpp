@@ -112,6 +112,8 @@ nlohmann::json describe_lumped_model(const GearLayout& L) {
                                   "for a rack ISO takes the pinion's mass alone (the rack as "
                                   "infinitely heavy), the opposite of a pinion held at speed "
                                   "driving a free rack"}};
+  } else if (!L.iso_dynamics_note.empty()) {
+    out["iso6336_1_method_b"] = {{"status", "not_applicable"}, {"reason", L.iso_dynamics_note}};
   }
   return out;
 }

@@ -28,6 +28,11 @@ struct Outline {
   int body = -1;
   std::vector<std::array<double, 2>> points;  // [m]
   bool closed = true;
+  // Contact through one side alone: where not zero, only the outline's parts
+  // whose outward normal does not point against this direction are contact
+  // surfaces (a static check's rack, whose reverse flanks carry nothing:
+  // scenes/rack_pinion.cpp, rack_contact_side).
+  std::array<double, 2> contact_side{0.0, 0.0};
 };
 
 struct Scene {

@@ -18,6 +18,12 @@ namespace {
 // a corner.
 constexpr double kChordTurnMax = 0.03;  // rad
 
+// An outline's one-sided contact (Outline::contact_side) keeps the parts
+// whose normal turns up to 10 degrees past square to the side: a tip land
+// and the rounds beside it stay surfaces, a flank facing the other way
+// (cos 14.5-25 degrees, 0.91-0.97, against the side) does not.
+constexpr double kSideTolerance = 0.17;  // sin(10 degrees)
+
 struct Closest {
   double distance = std::numeric_limits<double>::infinity();
   double nx = 0.0, ny = 0.0;  // outward normal
@@ -262,7 +268,6 @@ void from_outline(Simulation& sim, const Body& body, const Outline& o) {
       if (best.distance < before) best.edge = k;
     });
     if (best.distance <= reach) {
-      p.surf_depth[i] = body.fitted ? 0.0 : best.distance;
       const double s =
           turning.arc[best.edge] + best.t * (turning.arc[best.edge + 1] - turning.arc[best.edge]);
       // The normal of the curve the outline's chords are drawn along, not
@@ -276,8 +281,11 @@ void from_outline(Simulation& sim, const Body& body, const Outline& o) {
       const double nx = ccw ? std::sin(travel) : -std::sin(travel);
       const double ny = ccw ? -std::cos(travel) : std::cos(travel);
       const bool corner = nx * best.nx + ny * best.ny < std::cos(kChordTurnMax);
-      p.surf_nx[i] = corner ? best.nx : nx;
-      p.surf_ny[i] = corner ? best.ny : ny;
+      const double ox = corner ? best.nx : nx, oy = corner ? best.ny : ny;
+      if (ox * o.contact_side[0] + oy * o.contact_side[1] < -kSideTolerance) continue;
+      p.surf_depth[i] = body.fitted ? 0.0 : best.distance;
+      p.surf_nx[i] = ox;
+      p.surf_ny[i] = oy;
       const double w = p.spacing[i];
       const double kappa = turning.mean_curvature(s, w);
       p.surf_curvature[i] = kappa;
