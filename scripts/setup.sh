@@ -14,6 +14,8 @@ PACKAGES=(
   # JSON Schema validation of job files (header-only, over nlohmann-json)
   libvalijson-dev
   libsqlite3-dev sqlite3 libosmesa6-dev libpng-dev
+  # SHA-256 of the job store's session ids (libcrypto)
+  libssl-dev
   # tests and benchmarks
   libgtest-dev libbenchmark-dev python3-pysph curl
   # the official JSON-Schema-Test-Suite, run through the job validator

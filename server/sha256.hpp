@@ -1,5 +1,5 @@
 #pragma once
-// SHA-256 (FIPS 180-4), for what the job store keeps of a secret: the hash
+// SHA-256 (FIPS 180-4, OpenSSL's libcrypto), for what the job store keeps of a secret: the hash
 // of a session id, never the id itself, so that a copy of the store opens
 // no session.
 #include <string>
