@@ -186,11 +186,14 @@ std::string gear_crack_heading(const std::vector<Point>& path, const GearCrackSi
     }
   }
   if (bore || !std::isfinite(best)) return "rim";
-  // Through the tooth: out at its other flank or fillet, above the root
-  // circle and within its own half pitch.
-  const bool own_tooth = std::abs(angle_from_axis(hit, site)) < site.half_pitch;
-  const bool above_root = geometry::norm(hit - site.centre) >= site.root_radius;
-  return own_tooth && above_root ? "tooth" : "rim";
+  // Through the tooth: out at the toothed surface (no deeper than a spacing
+  // below the root circle) within a pitch of the tooth's axis, i.e. at its
+  // other flank or fillet or the floor of the space beside it, so that the
+  // tooth comes away. Anything else (the bore, the modelled sector's cut
+  // sides) splits the rim.
+  const bool near_tooth = std::abs(angle_from_axis(hit, site)) <= 2.0 * site.half_pitch;
+  const bool on_surface = geometry::norm(hit - site.centre) >= site.root_radius - site.spacing;
+  return near_tooth && on_surface ? "tooth" : "rim";
 }
 
 void attach_gear_crack(Scene& scene, const GearCrackPlan& plan, std::shared_ptr<GearCrackSite> site,
@@ -245,13 +248,13 @@ void attach_gear_crack(Scene& scene, const GearCrackPlan& plan, std::shared_ptr<
     c["start_fillet_position"] = (f.arc.back() - start->arc) / (f.arc.back() - f.arc.front());
     c["initial_length_m"] = plan.length;
     c["spacing_m"] = site->spacing;
-    if (start->placed && !s2.cracks.empty()) {
-      c["heading"] = gear_crack_heading(s2.cracks.back().path, *site);
-    }
-    // A run that used its increments before reaching a boundary: the outcome
-    // is where its last segment heads (reached_boundary false).
+    // A stop at a boundary classifies the path with the tip that would have
+    // come too near it; a run that used its increments before reaching one
+    // takes where its last segment heads (reached_boundary false).
     c["reached_boundary"] = g->outcome == "tooth" || g->outcome == "rim";
-    if (g->outcome == "max_increments" && c.contains("heading")) c["outcome"] = c["heading"];
+    if (g->outcome == "max_increments" && start->placed && !s2.cracks.empty()) {
+      c["outcome"] = gear_crack_heading(s2.cracks.back().path, *site);
+    }
     std::vector<double> K_eq, da;
     for (std::size_t k = 0; k < g->K_I.size(); ++k) {
       K_eq.push_back(physics::equivalent_K(g->K_I[k], g->K_II[k]));

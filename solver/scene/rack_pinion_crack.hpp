@@ -60,8 +60,9 @@ std::vector<geometry::Point> gear_crack_path(const GearCrackPlan& plan, const Ge
 double fillet_arc_of_position(const gear::FilletCurve& c, double position);
 
 // Whether the crack, continued straight along its last segment, meets the
-// tooth's other flank or fillet first ("tooth"), or the bore, the rim's
-// sides or a neighbouring space ("rim").
+// toothed surface within a pitch of tooth 0's axis first (its other flank
+// or fillet, or the floor of the space beside it: "tooth"), or the bore or
+// the modelled sector's cut sides ("rim").
 std::string gear_crack_heading(const std::vector<geometry::Point>& path, const GearCrackSite& site);
 
 // The crack on the scene: cut now (or at the first stage, for the peak),
