@@ -86,7 +86,7 @@ GearFeJob read_gear_fe_job(const nlohmann::json& job) {
   c.first_tooth = teeth.front();
   c.last_tooth = teeth.back();
   c.whole_gear = static_cast<int>(teeth.size()) >= c.pinion.teeth;
-  out.rim_depth_m = scenes::pinion_rim_depth_m(pj);
+  out.rim_depth_m = scenes::pinion_rim_depth_m(pj, pinion->tip_radius() - pinion->root_radius());
   c.fixed_radius_m = pinion->root_radius() - out.rim_depth_m;
   if (!(c.fixed_radius_m > 0.0)) {
     refuse("/scene/pinion/rim_depth_mm", "the rim reaches the pinion centre");

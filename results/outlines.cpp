@@ -2,8 +2,8 @@
 
 namespace gearsph::results {
 
-void write_outlines(hid_t file, const std::vector<StoredOutline>& outlines) {
-  h5::Id group = h5::create_group(file, "outlines");
+void write_outlines(hid_t file, const std::vector<StoredOutline>& outlines, const char* name) {
+  h5::Id group = h5::create_group(file, name);
   const std::size_t k = outlines.size();
   std::vector<std::string> names;
   std::vector<std::int32_t> body;
@@ -24,9 +24,11 @@ void write_outlines(hid_t file, const std::vector<StoredOutline>& outlines) {
   h5::write_dataset(group.get(), "points", points, {points.size() / 2, 2});
 }
 
-std::vector<StoredOutline> read_outlines(hid_t file) {
-  if (!h5::has_link(file, "outlines")) return {};
-  h5::Id group = h5::open_group(file, "outlines");
+namespace {
+
+std::vector<StoredOutline> read_group(hid_t file, const char* name) {
+  if (!h5::has_link(file, name)) return {};
+  h5::Id group = h5::open_group(file, name);
   const hid_t g = group.get();
   const auto names = h5::read_text_dataset(h5::open_dataset(g, "name").get());
   const auto body = h5::read_all<std::int32_t>(h5::open_dataset(g, "body").get());
@@ -48,6 +50,14 @@ std::vector<StoredOutline> read_outlines(hid_t file) {
       out[k].points.push_back({points[2 * i], points[2 * i + 1]});
     }
   }
+  return out;
+}
+
+}  // namespace
+
+std::vector<StoredOutline> read_outlines(hid_t file) {
+  std::vector<StoredOutline> out = read_group(file, "outlines");
+  for (StoredOutline& c : read_group(file, "cracks")) out.push_back(std::move(c));
   return out;
 }
 

@@ -23,8 +23,12 @@ struct StoredOutline {
   bool closed = false;
 };
 
-void write_outlines(hid_t file, const std::vector<StoredOutline>& outlines);
-// Empty if the file has no /outlines.
+// `group`: "outlines", or "cracks" for the cracks' paths at the end of a run
+// (the same layout; results_layout.hpp).
+void write_outlines(hid_t file, const std::vector<StoredOutline>& outlines,
+                    const char* group = "outlines");
+// Empty if the file has no /outlines; a run's /cracks follow them (named
+// "crack", open), so that a renderer draws them over the field.
 std::vector<StoredOutline> read_outlines(hid_t file);
 
 template <class SceneT>

@@ -37,6 +37,10 @@
 //                  commit marker of a row); R rows allocated as planned, fill
 //                  value NaN; uncompressed 1024-row chunks.
 //   /outlines      only if the scene has outlines (outlines.hpp).
+//   /cracks        only if the run has cracks: each crack's path in the
+//                  reference configuration at the end of the run, as the
+//                  outlines are stored (a grown crack: the mouth, the drawn
+//                  tip, then one vertex per increment; docs/cracks.md).
 //
 // The stress fields are the full Cauchy stress sigma = -p I + S (plane
 // strain, so sigma_zz != 0); pressure is positive in compression.

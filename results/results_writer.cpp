@@ -33,6 +33,22 @@ ResultsWriter::~ResultsWriter() {
   if (!published_ && !temp_path_.empty()) std::filesystem::remove(temp_path_, ignored);
 }
 
+namespace {
+
+// The cracks as they ended (a grown crack's path, one vertex per increment
+// after the drawn tip), or as drawn if the run stopped: /cracks.
+void write_crack_paths(hid_t file, const Simulation& sim) {
+  std::vector<StoredOutline> list;
+  for (const geometry::Crack& c : sim.cracks) {
+    StoredOutline o{"crack", c.body, {}, false};
+    for (const geometry::Point q : c.path) o.points.push_back({q.x, q.y});
+    list.push_back(std::move(o));
+  }
+  if (!list.empty()) write_outlines(file, list, "cracks");
+}
+
+}  // namespace
+
 void ResultsWriter::on_start(const PreparedJob& job) {
   h5::QuietErrors quiet;
   const Simulation& sim = job.scene.sim;
@@ -98,13 +114,14 @@ void ResultsWriter::on_snapshot(const Simulation& sim, std::int64_t) {
   if (published_) xdmf_->write_throttled();
 }
 
-void ResultsWriter::on_finish(const PreparedJob&, const RunResult& result) {
+void ResultsWriter::on_finish(const PreparedJob& job, const RunResult& result) {
   h5::QuietErrors quiet;
   if (!file_.valid()) return;
   if (!histories_.created()) start_histories(result.history);
   take_new_rows(result.history);
   commit_histories();
   write_status(file_.get(), result.status, result.steps_done);
+  write_crack_paths(file_.get(), job.scene.sim);
   file_.reset();  // closes: the file is complete
   publish();
   if (xdmf_->frames() > 0) xdmf_->write();

@@ -271,6 +271,10 @@ std::vector<render::Polyline> moved_outlines(const results::ResultsFile& file,
     line.colour = {20, 20, 20};
     line.closed = o.closed;
     line.width_px = 1.5;
+    if (o.name == "crack") {  // a crack's path (results.h5 /cracks), over the field
+      line.colour = {200, 0, 0};
+      line.width_px = 2.5;
+    }
     const bool moves = o.body >= 0 && static_cast<std::size_t>(o.body) < bodies.size();
     const RigidMotion m = moves ? fit_motion(initial.position, frame.position, bodies[o.body].begin,
                                              bodies[o.body].end)

@@ -1,6 +1,7 @@
 #include "solver/physics/crack_growth.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace gearsph::physics {
 
@@ -23,6 +24,25 @@ geometry::Point grown_tip(geometry::Point tip, geometry::Point direction, double
   const geometry::Point turned{c * direction.x - s * direction.y,
                                s * direction.x + c * direction.y};
   return tip + increment * turned;
+}
+
+}  // namespace gearsph::physics
+
+namespace gearsph::physics {
+
+double equivalent_K(double K_I, double K_II) {
+  return near_tip_hoop_stress(K_I, K_II, max_tangential_stress_kink(K_I, K_II));
+}
+
+double paris_cycles(const std::vector<double>& da_m, const std::vector<double>& K_eq_Pa_sqrt_m,
+                    double C, double m) {
+  double cycles = 0.0;
+  for (std::size_t k = 0; k < da_m.size() && k + 1 < K_eq_Pa_sqrt_m.size(); ++k) {
+    const double a = 1e-6 * K_eq_Pa_sqrt_m[k], b = 1e-6 * K_eq_Pa_sqrt_m[k + 1];
+    if (a <= 0.0 || b <= 0.0) return std::numeric_limits<double>::infinity();
+    cycles += da_m[k] * 0.5 * (1.0 / (C * std::pow(a, m)) + 1.0 / (C * std::pow(b, m)));
+  }
+  return cycles;
 }
 
 }  // namespace gearsph::physics

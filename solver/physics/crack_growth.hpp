@@ -14,6 +14,8 @@
 // K_II's sign is that of the Williams field of diagnostics/stress_intensity.hpp
 // (Anderson, Fracture Mechanics, table 2.2): K_II > 0 kinks the crack
 // clockwise (theta_c < 0), 70.53 degrees in pure mode II.
+#include <vector>
+
 #include "solver/geometry/crack.hpp"
 
 namespace gearsph::physics {
@@ -32,5 +34,24 @@ double near_tip_hoop_stress(double K_I, double K_II, double theta);
 // vector) turned by `kink` [rad], `increment` [m] further.
 geometry::Point grown_tip(geometry::Point tip, geometry::Point direction, double kink,
                           double increment);
+
+}  // namespace gearsph::physics
+
+namespace gearsph::physics {
+
+// The equivalent mode-I factor of the maximum tangential stress criterion:
+// the near-tip hoop stress times sqrt(2 pi r) in the kink's direction, K_I
+// itself in pure mode I.
+double equivalent_K(double K_I, double K_II);
+
+// Paris' law da/dN = C dK^m over a path of increments da[k] (from reading k
+// to k + 1) with the equivalent K at every reading (one more than the
+// increments), under a pulsating load (R = 0: dK = K_max): the cycles
+// N = sum_k da[k] (f_k + f_{k+1}) / 2, f = 1 / (C dK^m), the trapezoidal
+// rule in the crack length over each increment. dK in MPa m^0.5 and da in m,
+// so C is in m/cycle per (MPa m^0.5)^m, as Paris constants are tabulated.
+// An increment with a K <= 0 at either end is not growing: infinity.
+double paris_cycles(const std::vector<double>& da_m, const std::vector<double>& K_eq_Pa_sqrt_m,
+                    double C, double m);
 
 }  // namespace gearsph::physics

@@ -22,7 +22,6 @@
 // K_I and K_II are read by the interaction integral on a ring around each
 // tip (diagnostics/stress_intensity.hpp).
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -32,6 +31,7 @@
 #include "solver/physics/crack_growth.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 #include "solver/scene/builders.hpp"
+#include "solver/scene/crack_stages.hpp"
 #include "solver/scene/lattice.hpp"
 
 namespace gearsph::scenes {
@@ -44,8 +44,8 @@ constexpr double kPi = std::numbers::pi;
 // tip): wide enough to hold many particles, clear of the tip's support
 // inside and of the other boundaries outside (docs/cracks.md measures
 // the result's independence of them).
-constexpr double kRingOuter = 0.8;
-constexpr double kRingInner = 0.3;
+constexpr double kRingOuter = kCrackRingOuter;
+constexpr double kRingInner = kCrackRingInner;
 // A second, smaller ring that reaches into the tip's support, reported for
 // the domain independence (a path-independent integral gives the same K on
 // any ring where the discrete field is sound).
@@ -67,24 +67,12 @@ constexpr double kCentreMostAcross = 0.8;
 // least two rows of particles on either side of it; four is the default.
 constexpr double kLeastIncrementSpacings = 2.0;
 constexpr double kDefaultIncrementSpacings = 4.0;
-// After an increment the plate is held at its full load for this many
-// periods of its slowest mode: the mass-proportional damping at that mode's
-// frequency omega takes every mode's amplitude down by exp(-omega t / 2),
-// exp(-3 pi) = 8e-5 of the jump the cut gave (docs/cracks.md measures K's
-// change with a longer hold).
-constexpr double kSettlePeriods = 3.0;
-
-struct GrowthInput {
-  double increment = 0.0;  // [m]; 0: the default
-  int max_increments = 0;
-  double K_I_threshold = 0.0;  // [Pa m^0.5]
-};
 
 struct CrackInput {
   bool edge = true;
   double length = 0.0;  // edge: a; centre: 2a [m]
   double angle = 0.0;   // from the normal to the load [rad]
-  GrowthInput growth;
+  CrackGrowthInput growth;
   double a() const { return edge ? length : 0.5 * length; }
 };
 
@@ -261,29 +249,7 @@ double clear_radius(geometry::Point tip, const geometry::Crack& crack, geometry:
   return rho;
 }
 
-struct TipReadout {
-  diagnostics::CrackTip tip;
-  diagnostics::DomainRing ring;
-};
-
-TipReadout tip_readout(geometry::Point tip, geometry::Point behind, const geometry::Crack& crack,
-                       geometry::Point half) {
-  const geometry::Point d = tip - behind;
-  const double n = std::hypot(d.x, d.y);
-  const double rho = clear_radius(tip, crack, half);
-  return {{tip, {d.x / n, d.y / n}}, {kRingInner * rho, kRingOuter * rho}};
-}
-
-// The crack's tips as they are now: its end, advancing along its last
-// segment, and for a centre crack its front too.
-std::vector<TipReadout> current_tips(const geometry::Crack& crack, geometry::Point half) {
-  const std::vector<geometry::Point>& p = crack.path;
-  std::vector<TipReadout> tips{tip_readout(p.back(), p[p.size() - 2], crack, half)};
-  if (crack.front_is_tip) tips.push_back(tip_readout(p.front(), p[1], crack, half));
-  return tips;
-}
-
-nlohmann::json tip_json(const diagnostics::StressIntensity& k, const TipReadout& t,
+nlohmann::json tip_json(const diagnostics::StressIntensity& k, const CrackTipReadout& t,
                         const Simulation& s2) {
   const double rho = t.ring.r_out / kRingOuter;
   const diagnostics::DomainRing small{kSmallRingInner * rho, kSmallRingOuter * rho};
@@ -301,12 +267,12 @@ nlohmann::json tip_json(const diagnostics::StressIntensity& k, const TipReadout&
 // K at every tip, their mean (a centre crack's two tips are alike by
 // symmetry; K_II's sign is each tip's own frame's, alike too), against the
 // references.
-nlohmann::json analyse_cracked_plate(const std::vector<TipReadout>& tips, const Reference& ref,
+nlohmann::json analyse_cracked_plate(const std::vector<CrackTipReadout>& tips, const Reference& ref,
                                      const Simulation& s2) {
   nlohmann::json out;
   out["reference"] = ref.text;
   double ki = 0.0, kii = 0.0;
-  for (const TipReadout& t : tips) {
+  for (const CrackTipReadout& t : tips) {
     const diagnostics::StressIntensity k = diagnostics::interaction_integral(s2, 0, t.tip, t.ring);
     out["tips"].push_back(tip_json(k, t, s2));
     ki += k.K_I / static_cast<double>(tips.size());
@@ -328,106 +294,6 @@ nlohmann::json analyse_cracked_plate(const std::vector<TipReadout>& tips, const 
   return out;
 }
 
-// The crack's growth, shared by the stages, the history column and the
-// analysis: per stage, K read at each tip before it grows.
-struct Growth {
-  GrowthInput in;
-  double increment = 0.0, dx = 0.0;
-  double settle_s = 0.0;  // the hold after each increment
-  geometry::Point half;
-  std::vector<std::vector<geometry::Point>> paths;  // per tip, its positions
-  std::vector<double> K_I, K_II, kink_deg;          // per stage (the tips' mean)
-  std::vector<double> rebuild_s, stage_s;           // the pairs' rebuild, the stage's wall time
-  std::string outcome, stop;
-  nlohmann::json initial;  // the analysis of the crack as drawn
-  std::chrono::steady_clock::time_point stage_start = std::chrono::steady_clock::now();
-};
-
-nlohmann::json growth_json(const Growth& g) {
-  nlohmann::json paths = nlohmann::json::array();
-  for (const auto& path : g.paths) {
-    nlohmann::json pts = nlohmann::json::array();
-    for (const geometry::Point q : path) pts.push_back({q.x, q.y});
-    paths.push_back(pts);
-  }
-  return {{"increment_m", g.increment},
-          {"increments", g.paths.empty() ? std::size_t{0} : g.paths[0].size() - 1},
-          {"path_m", paths.empty() ? nlohmann::json::array() : paths[0]},
-          {"tip_paths_m", paths},
-          {"K_I_Pa_sqrt_m", g.K_I},
-          {"K_II_Pa_sqrt_m", g.K_II},
-          {"kink_deg", g.kink_deg},
-          {"outcome", g.outcome.empty() ? nlohmann::json() : nlohmann::json(g.outcome)},
-          {"stop", g.stop},
-          {"pair_rebuild_s", g.rebuild_s},
-          {"stage_wall_s", g.stage_s}};
-}
-
-// One quasi-static stage (Scene::next_stage): K at each tip of the settled
-// plate, then either a stop (K_I below the threshold, the increments done,
-// a tip that would come within the ring's reach of a free surface) or an
-// increment of every tip in its own direction of maximum tangential
-// stress, the pairs cut again, and the hold that settles the plate.
-double grow_stage(Growth& g, Simulation& sim, const Reference& ref) {
-  const auto now = std::chrono::steady_clock::now();
-  g.stage_s.push_back(std::chrono::duration<double>(now - g.stage_start).count());
-  geometry::Crack& crack = sim.cracks.back();
-  const std::vector<TipReadout> tips = current_tips(crack, g.half);
-  if (g.initial.is_null()) g.initial = analyse_cracked_plate(tips, ref, sim);
-  double ki = 0.0, kii = 0.0;
-  std::vector<geometry::Point> next;
-  for (std::size_t t = 0; t < tips.size(); ++t) {
-    const diagnostics::StressIntensity k =
-        diagnostics::interaction_integral(sim, 0, tips[t].tip, tips[t].ring);
-    if (g.paths.size() <= t) g.paths.push_back({tips[t].tip.tip});
-    ki += k.K_I / static_cast<double>(tips.size());
-    kii += k.K_II / static_cast<double>(tips.size());
-    const double kink = physics::max_tangential_stress_kink(k.K_I, k.K_II);
-    next.push_back(physics::grown_tip(tips[t].tip.tip, tips[t].tip.direction, kink, g.increment));
-    if (t == 0) g.kink_deg.push_back(kink * 180.0 / kPi);
-  }
-  g.K_I.push_back(ki);
-  g.K_II.push_back(kii);
-  const int done = static_cast<int>(g.paths[0].size()) - 1;
-  if (ki < g.in.K_I_threshold) {
-    g.outcome = "arrested";
-    g.stop = "K_I " + std::to_string(ki) + " Pa m^0.5 fell below the threshold";
-    return 0.0;
-  }
-  if (done >= g.in.max_increments) {
-    g.outcome = "max_increments";
-    g.stop = std::to_string(done) + " increments, as asked";
-    return 0.0;
-  }
-  // Every tip grown at once (a centre crack's two), then each new tip's
-  // room checked on the grown crack.
-  geometry::Crack grown = crack;
-  grown.path.push_back(next[0]);
-  if (next.size() > 1) grown.path.insert(grown.path.begin(), next[1]);
-  for (const geometry::Point q : next) {
-    const double rho = clear_radius(q, grown, g.half);
-    if (rho < kLeastSpacingsAlong * g.dx) {
-      g.outcome = "free_surface";
-      g.stop = "the next tip would lie " + std::to_string(rho / g.dx) +
-               " spacings from a free surface: " +
-               (rho < g.dx ? std::string("within a spacing of it")
-                           : "too near for the ring that reads K (at least 8 spacings)");
-      return 0.0;
-    }
-  }
-  crack = grown;
-  for (std::size_t t = 0; t < next.size(); ++t) g.paths[t].push_back(next[t]);
-  // The pairs and their corrections built again for the new cut, on the
-  // same reference positions: every particle's (the cost is measured per
-  // increment against the stage's settling).
-  const auto rebuild = std::chrono::steady_clock::now();
-  sim.reference = ReferencePairs();
-  physics::total_lagrangian_setup(sim);
-  g.stage_start = std::chrono::steady_clock::now();
-  g.rebuild_s.push_back(std::chrono::duration<double>(g.stage_start - rebuild).count());
-  return g.settle_s;
-}
-
 }  // namespace
 
 Scene build_cracked_plate(const SceneInput& in) {
@@ -445,7 +311,10 @@ Scene build_cracked_plate(const SceneInput& in) {
   const geometry::Point half = fill_plate(sim, W, L, dx, sigma, mat);
   sim.cracks.push_back(crack_path(crack, half.y, dx));
   const std::vector<geometry::Point> path = sim.cracks.back().path;
-  const std::vector<TipReadout> tips = current_tips(sim.cracks.back(), half);
+  const CrackClearance clearance = [half](geometry::Point tip, const geometry::Crack& c) {
+    return clear_radius(tip, c, half);
+  };
+  const std::vector<CrackTipReadout> tips = crack_tips(sim.cracks.back(), clearance);
   sim.domain = grown_bounds(sim.particles, L);
   const geometry::Polygon rect = {
       {-half.x, -half.y}, {half.x, -half.y}, {half.x, half.y}, {-half.x, half.y}};
@@ -464,8 +333,8 @@ Scene build_cracked_plate(const SceneInput& in) {
 
   const Reference ref = reference_factors(crack, sigma, width);
   // K_I at the crack's end as it is now (it moves as the crack grows).
-  scene.columns.push_back({"K_I_Pa_sqrt_m", [half](const Simulation& s2) {
-                             const TipReadout t = current_tips(s2.cracks.back(), half)[0];
+  scene.columns.push_back({"K_I_Pa_sqrt_m", [clearance](const Simulation& s2) {
+                             const CrackTipReadout t = crack_tips(s2.cracks.back(), clearance)[0];
                              return diagnostics::interaction_integral(s2, 0, t.tip, t.ring).K_I;
                            }});
   scene.description = {{"plate_m", {length, width}},
@@ -478,19 +347,23 @@ Scene build_cracked_plate(const SceneInput& in) {
     };
     return scene;
   }
-  auto growth = std::make_shared<Growth>();
+  auto growth = std::make_shared<CrackStages>();
+  auto initial = std::make_shared<nlohmann::json>();
   growth->in = crack.growth;
-  growth->increment = increment;
+  growth->in.increment = increment;
   growth->dx = dx;
-  growth->half = half;
-  growth->settle_s = kSettlePeriods * 2.0 * kPi / omega;
-  scene.next_stage = [growth, ref](Simulation& s2) { return grow_stage(*growth, s2, ref); };
+  growth->settle_s = kCrackSettlePeriods * 2.0 * kPi / omega;
+  growth->clearance = clearance;
+  growth->on_first_stage = [initial, ref](const std::vector<CrackTipReadout>& t,
+                                          const Simulation& s2) {
+    *initial = analyse_cracked_plate(t, ref, s2);
+  };
+  scene.next_stage = [growth](Simulation& s2) { return grow_crack_stage(*growth, s2); };
   // The drawn crack's K against its references (read at the first stage),
   // then the growth.
   scene.analyse = [=](const History&, const Simulation& s2) {
-    nlohmann::json out =
-        growth->initial.is_null() ? analyse_cracked_plate(tips, ref, s2) : growth->initial;
-    out["crack"] = growth_json(*growth);
+    nlohmann::json out = initial->is_null() ? analyse_cracked_plate(tips, ref, s2) : *initial;
+    out["crack"] = crack_growth_json(*growth);
     return out;
   };
   return scene;

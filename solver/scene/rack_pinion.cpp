@@ -18,7 +18,9 @@
 #include "solver/geometry/mesh_placement.hpp"
 #include "solver/geometry/rack_profile.hpp"
 #include "solver/scene/builders.hpp"
+#include "solver/scene/crack_stages.hpp"
 #include "solver/scene/rack_pinion.hpp"
+#include "solver/scene/rack_pinion_crack.hpp"
 
 namespace gearsph::scenes {
 
@@ -53,6 +55,9 @@ constexpr double kFilletsPerRootRadius = 5.0;
 // +4.4 and +5.6 % against FE, at 1.5 +3.0 and +3.4 %. The rack's back
 // carries no stress that is read and keeps the bulk spacing.
 constexpr double kPinionBulkOverFine = 1.5;
+// A root crack's spacing (rack_pinion_crack.hpp): the tooth's root chord
+// s_Fn holds at least this many.
+constexpr double kCrackSpacingsAcrossRoot = 40.0;
 // Half-width of the arc over which a fillet's stretch is differentiated, in
 // fillet spacings.
 constexpr double kFilletStretchWindow = 3.0;
@@ -421,9 +426,17 @@ GearOutlines gear_outlines(const nlohmann::json& pj, const GearLayout& L,
                            const geometry::RackGeometry& rack, const ModelledTeeth& teeth,
                            const geometry::MeshPlacement& place, double support) {
   GearOutlines o;
-  const double rim_depth = pinion_rim_depth_m(pj);
+  const double depth = L.tip_radius - L.root_radius;
+  const double rim_depth = pinion_rim_depth_m(pj, depth);
   o.r_drive = L.root_radius - rim_depth;
   o.r_inner = teeth.whole_pinion ? std::max(0.0, o.r_drive - support) : o.r_drive - support;
+  if (pj.contains("backup_ratio") && !(o.r_drive - support > 0.0)) {
+    throw JobError("/scene/pinion/backup_ratio",
+                   "leaves no rim: the rim and its held ring (" + std::to_string(1e3 * support) +
+                       " mm) must fit inside the root circle, so the backup ratio lies between 0 "
+                       "and " +
+                       std::to_string((L.root_radius - support) / depth) + " on this pinion");
+  }
   if (o.r_inner <= 0.0 && !teeth.whole_pinion) {
     throw JobError("/scene/pinion/rim_depth_mm", "the rim and hub ring reach the pinion centre");
   }
@@ -526,6 +539,7 @@ geometry::SpacingField pinion_spacing(const GearLayout& L, const geometry::Pinio
     field.add_feature(gear::loaded_flank(pinion, k, place.pinion, load_on_tooth(L, k)), sp.flank);
   }
   add_resolved_contact(field, L);
+  for (const std::vector<Point>& line : L.crack_refine) field.add_feature(line, L.crack_spacing);
   return field;
 }
 
@@ -763,6 +777,33 @@ GearProbes choose_probes(const Simulation& sim, const GearLayout& L,
   return probes;
 }
 
+// Where a root crack lives (rack_pinion_crack.hpp): tooth 0's tension
+// fillet, the modelled pinion's outline and the bore of its rim. The crack's
+// way takes the fillets' spacing.
+GearCrackSite crack_site_of(const GearLayout& L, const geometry::PinionGeometry& pinion,
+                            const geometry::MeshPlacement& place, const GearOutlines& o,
+                            const GearSpacings& sp) {
+  GearCrackSite site;
+  site.outline = o.pinion;
+  site.centre = {L.cx, L.cy};
+  site.r_drive = o.r_drive;
+  site.root_radius = L.root_radius;
+  site.tip_radius = L.tip_radius;
+  site.tooth_axis = -0.5 * kPi + place.pinion.angle;
+  site.half_pitch = 0.5 * pitch_angle(L);
+  site.thickness = L.iso_pitch.s_Fn;
+  // The crack's way takes the fillets' spacing, or finer: the tooth's root
+  // chord holds at least kCrackSpacingsAcrossRoot of them, so that a crack
+  // of 8 (the ring that reads K) is an eighth of it and its tip can cross
+  // most of the tooth before the ring meets the other side.
+  site.spacing = std::min(sp.fine, L.iso_pitch.s_Fn / kCrackSpacingsAcrossRoot);
+  site.fillets = gear::tooth_fillets(pinion, 0, place.pinion, load_on_tooth(L, 0), 0.2 * sp.fine,
+                                     kFilletStretchWindow * sp.fine);
+  const auto it = std::find(L.pinion_teeth.begin(), L.pinion_teeth.end(), 0);
+  site.monitor_tooth = static_cast<std::size_t>(it - L.pinion_teeth.begin());
+  return site;
+}
+
 // --- What was modelled, for the summary.
 
 // How the modelled teeth were chosen, in words.
@@ -877,7 +918,14 @@ nlohmann::json rating_document_of(const nlohmann::json& s, GearLayout& L,
 
 }  // namespace
 
-double pinion_rim_depth_m(const nlohmann::json& pinion) {
+double pinion_rim_depth_m(const nlohmann::json& pinion, double tooth_depth_m) {
+  if (pinion.contains("backup_ratio") && pinion.contains("rim_depth_mm")) {
+    throw JobError("/scene/pinion/backup_ratio",
+                   "gives the rim's depth as rim_depth_mm does: give one of the two");
+  }
+  if (pinion.contains("backup_ratio")) {
+    return pinion.at("backup_ratio").get<double>() * tooth_depth_m;
+  }
   if (pinion.contains("rim_depth_mm")) return 1e-3 * pinion.at("rim_depth_mm").get<double>();
   return 1e-3 * pinion.at("module_mm").get<double>();
 }
@@ -953,6 +1001,14 @@ Scene build_rack_pinion(const SceneInput& in) {
   const double travel = travel_to_contact_point(s, L, pinion, phase);
   const geometry::MeshPlacement place = place_gears(L, pinion, rack, teeth, phase, travel);
   const GearOutlines outlines = gear_outlines(pj, L, pinion, rack, teeth, place, sp.support);
+  std::shared_ptr<GearCrackSite> crack_site;
+  GearCrackPlan crack_plan;
+  if (s.contains("crack")) {
+    crack_site = std::make_shared<GearCrackSite>(crack_site_of(L, pinion, place, outlines, sp));
+    crack_plan = plan_gear_crack(s.at("crack"), *crack_site, L.quasi_static, sp.fitted);
+    L.crack_refine = crack_plan.refine;
+    L.crack_spacing = crack_site->spacing;
+  }
 
   const Material mat_p =
       read_material(s.contains("pinion_material") ? s.at("pinion_material") : s.at("material"));
@@ -1028,6 +1084,14 @@ Scene build_rack_pinion(const SceneInput& in) {
   scene.analyse = [L](const History& h, const Simulation& s2) {
     return analyse_rack_pinion(L, h, s2);
   };
+  if (crack_site) {
+    attach_gear_crack(scene, crack_plan, crack_site, L.roots,
+                      kCrackSettlePeriods * 2.0 * kPi / omega_mesh);
+    scene.description["crack"] = {{"spacing_m", crack_site->spacing},
+                                  {"root_chord_s_Fn_m", crack_site->thickness},
+                                  {"bore_radius_m", crack_site->r_drive},
+                                  {"increment_m", crack_plan.increment}};
+  }
   return scene;
 }
 

@@ -86,6 +86,10 @@ struct GearLayout {
   // Why a job that asked for no rating is not rated (its pair is outside
   // what ISO 6336 method B rates): {pointer, message}, or null.
   nlohmann::json rating_refusal;
+  // A root crack's way (rack_pinion_crack.hpp): lines where the pinion's
+  // body-fitted particles take the fillets' spacing.
+  std::vector<std::vector<geometry::Point>> crack_refine;
+  double crack_spacing = 0.0;
 };
 
 // Particles of no modelled tooth (hub ring, rack) are marked with a number
@@ -117,7 +121,10 @@ double velocity_stability_time(const std::vector<double>& t, const std::vector<d
 // rim_depth_mm, or one module. A fixed depth would hold a module-5 pinion's
 // sector closer to its teeth than a module-3 one's, and its mesh stiffness
 // with it (+34 % and -9 % against ISO where module 4 read +11 %).
-double pinion_rim_depth_m(const nlohmann::json& pinion);
+// With backup_ratio (the rim's thickness below the root circle over the
+// whole tooth depth, Lewicki & Ballarini's m_B): that ratio times
+// `tooth_depth_m` (tip radius less root radius).
+double pinion_rim_depth_m(const nlohmann::json& pinion, double tooth_depth_m);
 
 // The pinion teeth of a count ("all" or a number n: n teeth from the one in
 // mesh, extended toward where teeth come from, i.e. +k for a clockwise
