@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -91,7 +92,7 @@ int cmd_speed_sweep(Args& args) {
   const int steady_periods = args.integer("steady-periods", 20);
   const bool lumped_only = args.flag("lumped-only");
   const auto zeta_text = args.option("damping-ratio");
-  const std::string stiffness = args.option("stiffness").value_or("measured");
+  const std::string stiffness = args.option("stiffness").value_or("iso");
   const int stiffness_positions =
       args.integer("stiffness-positions", study::kDefaultCyclePositions);
   study::SweepLimits limits;
@@ -112,12 +113,18 @@ int cmd_speed_sweep(Args& args) {
   try {
     request["job"] = parse_job_text(read_file(rest[1]));
     const study::SpeedSweepRequest req = study::read_speed_sweep(request);
+    std::optional<study::MeshStiffnessCycle> cycle;
     if (req.stiffness == "measured") {
       std::printf("mesh stiffness: %d quasi-static checks over one mesh cycle\n",
                   req.stiffness_positions);
       std::fflush(stdout);
+      cycle = study::mesh_stiffness_cycle(req.job, req.stiffness_positions, threads);
+      // Kept on its own: the checks are worth having if the plan is refused.
+      fs::create_directories(out);
+      write_file_atomic(fs::path(out) / "stiffness_cycle.json",
+                        study::describe_stiffness_cycle(*cycle).dump(2) + "\n");
     }
-    plan = study::plan_speed_sweep(req, limits, 30.0, nullptr, threads);
+    plan = study::plan_speed_sweep(req, limits, 30.0, cycle ? &*cycle : nullptr, threads);
   } catch (const InvalidJob& e) {
     std::fprintf(stderr, "gearsph study speed-sweep: refused before any run:\n");
     for (const JobIssue& i : e.issues) {

@@ -36,7 +36,7 @@ struct SpeedSweepRequest {
   // The lumped model's mesh stiffness over the cycle: from quasi-static
   // checks of the same pair (mesh_stiffness_cycle.hpp) or ISO 6336-1's two
   // levels.
-  std::string stiffness = "measured";
+  std::string stiffness = "iso";
   int stiffness_positions = kDefaultCyclePositions;
 };
 
