@@ -61,11 +61,15 @@ TEST(SpeedSweep, RefusesBadRequestsAtTheirPointers) {
   EXPECT_EQ(pointers_of({{"job", typo}}),
             std::vector<std::string>{"/job/scene/rack/attached_mass_kg"});
   EXPECT_EQ(pointers_of({{"ratios", {1.0}}}), std::vector<std::string>{"/job"});
+  EXPECT_EQ(pointers_of({{"job", loaded_job()}, {"stiffness", "fe"}}),
+            std::vector<std::string>{"/stiffness"});
+  EXPECT_EQ(pointers_of({{"job", loaded_job()}, {"stiffness_positions", 1}}),
+            std::vector<std::string>{"/stiffness_positions"});
 }
 
 TEST(SpeedSweep, PlansEachSpeedAtItsRatioAndRefusesJobsOverTheLimits) {
-  const SpeedSweepRequest req =
-      read_speed_sweep({{"job", loaded_job()}, {"ratios", {0.5, 1.0}}, {"steady_periods", 2}});
+  const SpeedSweepRequest req = read_speed_sweep(
+      {{"job", loaded_job()}, {"ratios", {0.5, 1.0}}, {"steady_periods", 2}, {"stiffness", "iso"}});
   const SpeedSweepPlan plan = plan_speed_sweep(req, SweepLimits{});
   ASSERT_EQ(plan.jobs.size(), 2u);
   const double f_n = plan.natural_frequency_Hz;

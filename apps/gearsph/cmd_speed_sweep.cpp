@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -91,6 +92,9 @@ int cmd_speed_sweep(Args& args) {
   const int steady_periods = args.integer("steady-periods", 20);
   const bool lumped_only = args.flag("lumped-only");
   const auto zeta_text = args.option("damping-ratio");
+  const std::string stiffness = args.option("stiffness").value_or("iso");
+  const int stiffness_positions =
+      args.integer("stiffness-positions", study::kDefaultCyclePositions);
   study::SweepLimits limits;
   if (const auto v = args.option("max-particle-steps")) limits.max_particle_steps = std::stod(*v);
   const std::vector<std::string> rest = args.positional();
@@ -98,15 +102,29 @@ int cmd_speed_sweep(Args& args) {
     throw std::invalid_argument(
         "usage: gearsph study speed-sweep JOB.json --out DIR [--ratios 0.2,0.4,...] "
         "[--steady-periods N] [--threads N] [--max-particle-steps N] [--lumped-only] "
-        "[--damping-ratio Z]");
+        "[--damping-ratio Z] [--stiffness measured|iso] [--stiffness-positions N]");
   }
   json request = {
       {"ratios", ratios_text ? parse_ratios(*ratios_text) : json(study::default_sweep_ratios())},
-      {"steady_periods", steady_periods}};
+      {"steady_periods", steady_periods},
+      {"stiffness", stiffness},
+      {"stiffness_positions", stiffness_positions}};
   study::SpeedSweepPlan plan;
   try {
     request["job"] = parse_job_text(read_file(rest[1]));
-    plan = study::plan_speed_sweep(study::read_speed_sweep(request), limits);
+    const study::SpeedSweepRequest req = study::read_speed_sweep(request);
+    std::optional<study::MeshStiffnessCycle> cycle;
+    if (req.stiffness == "measured") {
+      std::printf("mesh stiffness: %d quasi-static checks over one mesh cycle\n",
+                  req.stiffness_positions);
+      std::fflush(stdout);
+      cycle = study::mesh_stiffness_cycle(req.job, req.stiffness_positions, threads);
+      // Kept on its own: the checks are worth having if the plan is refused.
+      fs::create_directories(out);
+      write_file_atomic(fs::path(out) / "stiffness_cycle.json",
+                        study::describe_stiffness_cycle(*cycle).dump(2) + "\n");
+    }
+    plan = study::plan_speed_sweep(req, limits, 30.0, cycle ? &*cycle : nullptr, threads);
   } catch (const InvalidJob& e) {
     std::fprintf(stderr, "gearsph study speed-sweep: refused before any run:\n");
     for (const JobIssue& i : e.issues) {
@@ -116,8 +134,18 @@ int cmd_speed_sweep(Args& args) {
     return 2;
   }
   fs::create_directories(fs::path(out) / "runs");
-  std::printf("lumped model: natural frequency %.1f Hz; ISO 6336-1 resonance %.1f Hz\n",
-              plan.natural_frequency_Hz, plan.iso_resonance_Hz);
+  std::printf(
+      "lumped model (%s stiffness, mean %.4g N/m): natural frequency %.1f Hz; ISO 6336-1 "
+      "resonance %.1f Hz\n",
+      plan.stiffness_from.c_str(), plan.stiffness.mean(), plan.natural_frequency_Hz,
+      plan.iso_resonance_Hz);
+  if (plan.stiffness_cycle.is_object()) {
+    std::printf("  measured in %.1f s wall:", plan.stiffness_cycle.at("wall_s").get<double>());
+    for (std::size_t k = 0; k < plan.stiffness.position.size(); ++k) {
+      std::printf(" s=%.4g: %.4g N/m;", plan.stiffness.position[k], plan.stiffness.value[k]);
+    }
+    std::printf("\n");
+  }
   std::vector<json> summaries(plan.jobs.size());
   const auto start = std::chrono::steady_clock::now();
   for (std::size_t k = 0; k < plan.jobs.size() && !lumped_only; ++k) {

@@ -47,11 +47,13 @@ usage:
       (DIR defaults to ./stability; --full adds the long cells, docs/stability.md)
   gearsph study speed-sweep JOB.json --out DIR [--ratios 0.2,0.4,...] [--steady-periods N]
                 [--threads N] [--max-particle-steps N] [--lumped-only] [--damping-ratio Z]
+                [--stiffness iso|measured] [--stiffness-positions N]
       a loaded rack_pinion job at several speeds (ratios of the mesh frequency
       to the lumped model's natural frequency), each run until its steady mesh
       has lasted N (20) mesh periods, beside the lumped model and ISO 6336-1's
       resonance; writes DIR/speed_sweep.json, speed_sweep.png and runs/
-      (docs/dynamics.md)
+      (docs/dynamics.md); the lumped model's mesh stiffness ISO's two levels
+      or (measured) N (8) quasi-static checks of the same pair over a cycle
   gearsph bench [--quick] [--out DIR] [--repeats N] [--no-pysph] [--python PATH]
                 [--pysph-script FILE] [--skip-full] [--max-particles N]
                 [--skip-study] [--study-jobs N]

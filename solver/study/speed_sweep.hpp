@@ -14,6 +14,7 @@
 #include "solver/gear/mesh_dynamics_sdof.hpp"
 #include "solver/job/job.hpp"
 #include "solver/run/runner.hpp"
+#include "solver/study/mesh_stiffness_cycle.hpp"
 
 namespace gearsph::study {
 
@@ -26,11 +27,17 @@ struct SweepLimits {
   int max_jobs = 100;
 };
 
-// A request: {"job": {...}, "ratios": [0.2, ...], "steady_periods": 20}.
+// A request: {"job": {...}, "ratios": [0.2, ...], "steady_periods": 20,
+// "stiffness": "measured" | "iso", "stiffness_positions": 8}.
 struct SpeedSweepRequest {
   nlohmann::json job;  // validated, defaults filled
   std::vector<double> ratios;
   int steady_periods = 20;
+  // The lumped model's mesh stiffness over the cycle: from quasi-static
+  // checks of the same pair (mesh_stiffness_cycle.hpp) or ISO 6336-1's two
+  // levels.
+  std::string stiffness = "iso";
+  int stiffness_positions = kDefaultCyclePositions;
 };
 
 // The ratios a sweep takes when none are given: below, through and above
@@ -45,6 +52,11 @@ SpeedSweepRequest read_speed_sweep(const nlohmann::json& request);
 struct SpeedSweepPlan {
   SpeedSweepRequest request;
   nlohmann::json lumped_model;  // model.lumped_model of the sweep's scene
+  // The stiffness the lumped model takes, and its natural frequency on the
+  // table's mean, which sets the speeds.
+  gear::dynamics::MeshCycleTable stiffness;
+  std::string stiffness_from;      // "measured" | "iso"
+  nlohmann::json stiffness_cycle;  // the measured cycle's checks (null for ISO)
   double natural_frequency_Hz = 0.0;
   double iso_resonance_Hz = 0.0;  // 0: not rated
   std::vector<double> mesh_frequency_Hz;
@@ -60,13 +72,20 @@ struct SpeedSweepPlan {
 // natural periods plus the steady periods and the detector's reference, no
 // snapshots. Builds the first speed's scene once for the lumped model;
 // throws InvalidJob at /ratios/k for a speed whose job would exceed the
-// limits, and at /ratios for more jobs than allowed.
+// limits, and at /ratios for more jobs than allowed. A request for the
+// measured stiffness runs its static checks here (on `threads`) unless
+// `measured` gives them.
 SpeedSweepPlan plan_speed_sweep(const SpeedSweepRequest& request, const SweepLimits& limits,
-                                double transient_natural_periods = 30.0);
+                                double transient_natural_periods = 30.0,
+                                const MeshStiffnessCycle* measured = nullptr, int threads = 0);
 
-// The lumped model from a scene's model.lumped_model block.
+// The lumped model from a scene's model.lumped_model block: ISO's two
+// levels, or the given stiffness over the cycle.
 gear::dynamics::SdofModel sdof_from_description(const nlohmann::json& lumped_model,
                                                 double damping_ratio);
+gear::dynamics::SdofModel sdof_from_description(const nlohmann::json& lumped_model,
+                                                double damping_ratio,
+                                                const gear::dynamics::MeshCycleTable& stiffness);
 
 // Stops a run once its history holds `steady_periods` mesh periods of
 // steady mesh (diagnostics/steady_mesh.hpp) after its start transient: a
