@@ -248,8 +248,8 @@ TEST(Rating, Iso6336_5LinesOfEveryClass) {
 TEST(Rating, Iso6336_5HardnessRangesAreEnforced) {
   const char* kinds[] = {"carbon", "alloy"};
   for (const std::string& cls : class_labels()) {
-    const bool vickers = !(cls == "St" || cls == "St(cast)" || cls == "GTS" || cls == "GJS" ||
-                           cls == "GJL");
+    const bool vickers =
+        !(cls == "St" || cls == "St(cast)" || cls == "GTS" || cls == "GJS" || cls == "GJL");
     const std::string key = vickers ? "hardness_HV" : "hardness_HB";
     const bool kinded = cls == "V" || cls == "V(cast)";
     for (const char* q : {"ML", "MQ", "ME"}) {
@@ -481,8 +481,8 @@ TEST(Rating, DynamicRunsMeasuredKvBesideIsos) {
   const json doc = paper_rack_pair(5000);
   const json b = rate_document(doc);
   const double K_v_iso = b["factors"]["K_v"].get<double>();
-  const json steady = {{"steady", true}, {"K_v", 1.25}, {"steady_from_s", 0.01},
-                       {"steady_periods", 6}};
+  const json steady = {
+      {"steady", true}, {"K_v", 1.25}, {"steady_from_s", 0.01}, {"steady_periods", 6}};
   const json r = rating_from_dynamics(doc, steady);
   EXPECT_DOUBLE_EQ(r["K_v"]["iso6336_1_method_B"].get<double>(), K_v_iso);
   EXPECT_DOUBLE_EQ(r["K_v"]["measured"].get<double>(), 1.25);
@@ -493,8 +493,8 @@ TEST(Rating, DynamicRunsMeasuredKvBesideIsos) {
   EXPECT_NEAR(r["with_measured_K_v"]["sigma_F_Pa"].get<double>(),
               b["bending"]["sigma_F_Pa"][0].get<double>() * 1.25 / K_v_iso, 1e-3);
   EXPECT_EQ(r["governing"]["with"], "the measured K_v");
-  const json unsteady = {{"steady", false}, {"K_v", 1.7},
-                         {"note", "the mesh force never settled within 5 %"}};
+  const json unsteady = {
+      {"steady", false}, {"K_v", 1.7}, {"note", "the mesh force never settled within 5 %"}};
   const json u = rating_from_dynamics(doc, unsteady);
   EXPECT_TRUE(u["K_v"]["measured"].is_null());
   EXPECT_EQ(u["K_v"]["reason"], "the mesh force never settled within 5 %");
@@ -512,7 +512,8 @@ TEST(Rating, FeCheckRatedUnderTheSimulationsFactors) {
   s.tool.pressure_angle_rad = 20.0 * kPi / 180.0;
   const geometry::PinionGeometry pinion(s);
   const json iron = paper_rack_pair(5000)["gears"][0]["material"];
-  const json doc = rack_pinion_rating_document(pinion, 0.02, iron, iron, 5000.0, -15.0, json::object());
+  const json doc =
+      rack_pinion_rating_document(pinion, 0.02, iron, iron, 5000.0, -15.0, json::object());
   const double alpha = 20.0 * kPi / 180.0;
   const json sc = {{"tooth0_force_N", 4000.0 / std::cos(alpha)},
                    {"fillet_tension_peak_Pa", 2.0e8},
@@ -566,7 +567,8 @@ TEST(Rating, StaticSafetyAndDefaultRequiredSafeties) {
   s.tool.pressure_angle_rad = 20.0 * kPi / 180.0;
   const geometry::PinionGeometry pinion(s);
   const json iron = doc["gears"][0]["material"];
-  const json job_doc = rack_pinion_rating_document(pinion, 0.02, iron, iron, 5000.0, -15.0, json::object());
+  const json job_doc =
+      rack_pinion_rating_document(pinion, 0.02, iron, iron, 5000.0, -15.0, json::object());
   EXPECT_DOUBLE_EQ(job_doc["required_safety"]["S_F"].get<double>(), 1.4);
   EXPECT_DOUBLE_EQ(job_doc["required_safety"]["S_H"].get<double>(), 1.0);
 }

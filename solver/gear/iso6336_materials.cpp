@@ -17,12 +17,12 @@ struct NamedClass {
   bool nitrocarburised;
 };
 constexpr NamedClass kClasses[] = {
-    {"St", MaterialClass::St, false},           {"St(cast)", MaterialClass::St, false},
-    {"GTS", MaterialClass::GTS, false},         {"GJS", MaterialClass::GJS, false},
-    {"GJL", MaterialClass::GJL, false},         {"V", MaterialClass::V, false},
-    {"V(cast)", MaterialClass::V, false},       {"Eh", MaterialClass::Eh, false},
-    {"IF", MaterialClass::IF, false},           {"NT", MaterialClass::NT, false},
-    {"NV(nitr)", MaterialClass::NV, false},     {"NV(nitrocar)", MaterialClass::NV, true}};
+    {"St", MaterialClass::St, false},       {"St(cast)", MaterialClass::St, false},
+    {"GTS", MaterialClass::GTS, false},     {"GJS", MaterialClass::GJS, false},
+    {"GJL", MaterialClass::GJL, false},     {"V", MaterialClass::V, false},
+    {"V(cast)", MaterialClass::V, false},   {"Eh", MaterialClass::Eh, false},
+    {"IF", MaterialClass::IF, false},       {"NT", MaterialClass::NT, false},
+    {"NV(nitr)", MaterialClass::NV, false}, {"NV(nitrocar)", MaterialClass::NV, true}};
 
 // One segment of an ISO 6336-5:2016 line: limit = A x + B [MPa] for the
 // hardness x (HBW or HV) from x_min to x_max. A = 0 where the limit does not
@@ -119,7 +119,9 @@ ClassLines lines_for(const std::string& label, bool alloy, const std::string& q)
           true};
 }
 
-bool needs_kind(const std::string& label) { return label == "V" || label == "V(cast)"; }
+bool needs_kind(const std::string& label) {
+  return label == "V" || label == "V(cast)";
+}
 
 bool flat(const Line& line) {
   for (const Segment& s : line) {
@@ -163,8 +165,10 @@ void limits_from_line(GearMaterial& g, const nlohmann::json& iso, const std::str
   bool alloy = false;
   if (needs_kind(g.class_label)) {
     if (!iso.contains("steel")) {
-      throw InvalidRating(at, "needs \"steel\": \"carbon\" or \"alloy\" to read the ISO 6336-5 "
-                              "line of class " + g.class_label);
+      throw InvalidRating(at,
+                          "needs \"steel\": \"carbon\" or \"alloy\" to read the ISO 6336-5 "
+                          "line of class " +
+                              g.class_label);
     }
     alloy = iso.at("steel").get<std::string>() == "alloy";
   }
@@ -186,8 +190,8 @@ void limits_from_line(GearMaterial& g, const nlohmann::json& iso, const std::str
     if (!evaluate(line, xx, v)) {
       char buf[240];
       std::snprintf(buf, sizeof buf,
-                    "%g %s is outside the ISO 6336-5 %s line of class %s %s%s: %g to %g %s", x, unit,
-                    what, g.class_label.c_str(), g.quality.c_str(),
+                    "%g %s is outside the ISO 6336-5 %s line of class %s %s%s: %g to %g %s", x,
+                    unit, what, g.class_label.c_str(), g.quality.c_str(),
                     needs_kind(g.class_label) ? (alloy ? " (alloy)" : " (carbon)") : "",
                     line.front().x_min, line.back().x_max, unit);
       throw InvalidRating(at + "/" + key, buf);
@@ -243,7 +247,8 @@ GearMaterial read_gear_material(const nlohmann::json& m, const std::string& poin
                         "and size factors (give at least {\"class\": ...})");
   }
   const nlohmann::json& iso = m.at("iso6336_5");
-  const NamedClass& c = class_from(iso.at("class").get<std::string>(), pointer + "/iso6336_5/class");
+  const NamedClass& c =
+      class_from(iso.at("class").get<std::string>(), pointer + "/iso6336_5/class");
   g.cls = c.cls;
   g.class_label = c.name;
   g.nitrocarburised = c.nitrocarburised;

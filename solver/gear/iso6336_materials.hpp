@@ -35,8 +35,8 @@ struct GearMaterial {
   MaterialClass cls = MaterialClass::St;
   std::string class_label = "St";  // as given: St, St(cast), V, V(cast), ..., NV(nitrocar)
   bool nitrocarburised = false;    // NV(nitrocar): its own life lines (ISO 6336-2, -3)
-  std::string quality = "MQ";  // ML, MQ or ME (ISO 6336-5:2016, clause 4)
-  double hardness_HB = 0.0;    // 0: not given
+  std::string quality = "MQ";      // ML, MQ or ME (ISO 6336-5:2016, clause 4)
+  double hardness_HB = 0.0;        // 0: not given
   double hardness_HV = 0.0;
   double sigma_Hlim_Pa = 0.0;
   double sigma_Flim_Pa = 0.0;

@@ -35,8 +35,7 @@ nlohmann::json rating_from_static_check(const nlohmann::json& document,
 // steady mesh, analysis.dynamics.K_v), and method B's safeties again with
 // the measured K_v in place of ISO's. A run that never reached a steady
 // mesh gets a null measured K_v with the reason, never an estimate.
-nlohmann::json rating_from_dynamics(const nlohmann::json& document,
-                                    const nlohmann::json& dynamics);
+nlohmann::json rating_from_dynamics(const nlohmann::json& document, const nlohmann::json& dynamics);
 
 // analysis.rating.fe_check: the FE check's fillet tension peak and its
 // Hertz patch pressure (fe_summary.json, for the FE's own load on tooth 0)
