@@ -94,7 +94,7 @@ std::pair<std::string, int> cli_errors(const std::string& args) {
 TEST(Cli, SecondsOptionsRefuseValuesOutsideTheirRange) {
   // worker, serve and submit are the service's commands: a build without the
   // service (the sanitizer build, GEARSPH_SERVICE=OFF) has none of them.
-  if (cli_output("help").first.find("gearsph worker") == std::string::npos) {
+  if (cli_errors("worker").first.find("unknown command") != std::string::npos) {
     GTEST_SKIP() << "this build has no service commands";
   }
   const fs::path dir = fs::temp_directory_path() / "gearsph_cli_seconds";
