@@ -4,6 +4,13 @@
 #include <cstdio>
 #include <utility>
 
+#include "solver/gear/iso6336_rating.hpp"
+
+namespace gearsph {
+// schemas/examples/rating-iso-tr-6336-30-1.json (generated: rating_example_text.cpp.in).
+extern const char* const kRatingExample1Text;
+}  // namespace gearsph
+
 namespace gearsph::validation {
 
 namespace {
@@ -97,6 +104,62 @@ std::function<Measurement(const json&, double)> text_outcome(const std::string& 
     m.note = got->get<std::string>() + " (expected " + expected + ")";
     return m;
   };
+}
+
+// |measured - published| / published: an analysis field against a value a
+// publication gives (not one the run computes beside it).
+std::function<Measurement(const json&, double)> published(const std::string& measured,
+                                                          double reference) {
+  return [=](const json& summary, double tol) {
+    Measurement m;
+    const json* got = field(summary, measured);
+    if (!got) {
+      m.note = missing(summary);
+      return m;
+    }
+    m.measured = got->get<double>();
+    m.reference = reference;
+    m.error = (m.measured - m.reference) / m.reference;
+    m.pass = std::abs(m.error) <= tol && summary.at("status") == "completed";
+    return m;
+  };
+}
+
+// ISO/TR 6336-30:2017, Example 1, rated from the shipped document against
+// its published results (as tabulated beside gfsReboucas/Drivetrain's
+// MATISO_6336.m; the references of tests/test_rating.cpp), each within the
+// issue's 0.5 %. Quick and full alike: the rating is arithmetic.
+void add_rating_cases(std::vector<Case>& out) {
+  const json document = json::parse(kRatingExample1Text);
+  struct Claim {
+    const char* name;
+    const char* quantity;
+    const char* path;  // below analysis/rating
+    double reference;
+  };
+  const Claim claims[] = {
+      {"sigma_H_pinion", "contact stress sigma_H of the pinion [Pa]", "pitting/sigma_H_Pa/0",
+       1301.4e6},
+      {"sigma_H_wheel", "contact stress sigma_H of the wheel [Pa]", "pitting/sigma_H_Pa/1",
+       1301.4e6},
+      {"S_H_pinion", "pitting safety S_H of the pinion", "pitting/S_H/0", 1.0285},
+      {"S_H_wheel", "pitting safety S_H of the wheel", "pitting/S_H/1", 1.0870},
+      {"Z_NT_pinion", "life factor Z_NT of the pinion", "factors/Z_NT/0", 0.910},
+      {"Z_NT_wheel", "life factor Z_NT of the wheel", "factors/Z_NT/1", 0.962},
+      {"K_v", "dynamic factor K_v (method B)", "factors/K_v", 1.003},
+      {"K_Hbeta", "face load factor K_Hbeta", "factors/K_Hbeta", 1.160},
+  };
+  for (const Claim& c : claims) {
+    Case k{std::string("rating/iso_tr_6336_30_example_1/") + c.name,
+           "rating",
+           c.quantity,
+           "ISO/TR 6336-30:2017, Example 1 (published)",
+           0.005,
+           document,
+           published(std::string("rating/") + c.path, c.reference)};
+    k.input = Case::Input::Rating;
+    out.push_back(std::move(k));
+  }
 }
 
 // Lewicki & Ballarini's test gear (NASA TM-107229; J. Mech. Des. 119, 1997):
@@ -295,6 +358,11 @@ json lame_job() {
 }
 
 }  // namespace
+
+json rating_summary(const json& document) {
+  return {{"status", "completed"},
+          {"analysis", {{"rating", gear::iso6336::rate_document(document)}}}};
+}
 
 std::vector<Case> cases(bool quick) {
   std::vector<Case> out;
@@ -511,6 +579,7 @@ std::vector<Case> cases(bool quick) {
          gear_fillet_job(point),
          relative("static_check/fillet_tension_peak_Pa", "static_check/iso_sigma_F0_Pa")});
   }
+  add_rating_cases(out);
   return out;
 }
 
