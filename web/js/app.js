@@ -1,10 +1,11 @@
-// The dashboard: a hash router over four views and one shared event stream.
+// The dashboard: a hash router over five views and one shared event stream.
 // Only this module starts anything; the others can be imported on their own.
 import { ensureSignedIn, get, onTokenNeeded } from "./api.js";
 import { compareView } from "./compare.js";
 import { events } from "./events.js";
 import { serverDegraded, serverIdentity } from "./format.js";
 import { jobsView } from "./jobs.js";
+import { ratingView } from "./rating.js";
 import { resultView } from "./result.js";
 import { submitView } from "./submit.js";
 import { askForToken, h } from "./ui.js";
@@ -28,6 +29,9 @@ function route() {
   } else if (parts[0] === "compare") {
     view = "compare";
     render = () => compareView(main, params);
+  } else if (parts[0] === "rating") {
+    view = "rating";
+    render = () => ratingView(main);
   } else {
     render = () => submitView(main, params);
   }
@@ -38,7 +42,7 @@ function route() {
   current?.dispose?.();
   main.replaceChildren();
   current = render();
-  const title = { submit: "New job", jobs: "Jobs", compare: "Compare" }[view];
+  const title = { submit: "New job", jobs: "Jobs", compare: "Compare", rating: "Rating" }[view];
   document.title = `${title} · GearSPH`;
 }
 

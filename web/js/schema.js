@@ -47,8 +47,9 @@ export function limitsText(node) {
 export function unitOf(pointer) {
   const key = pointer.split("/").pop();
   const units = [
-    ["_rad_s", "rad/s"], ["_m_s", "m/s"], ["_kg_m3", "kg/m³"], ["_deg", "°"], ["_mm", "mm"],
-    ["_Pa", "Pa"], ["_N", "N"], ["_s", "s"], ["_m", "m"],
+    ["_rad_s", "rad/s"], ["_m_s", "m/s"], ["_kg_m3", "kg/m³"], ["_mm2_s", "mm²/s"], ["_deg", "°"],
+    ["_mm", "mm"], ["_um", "µm"], ["_N_m", "N·m"], ["_rpm", "rpm"], ["_Pa", "Pa"], ["_N", "N"],
+    ["_s", "s"], ["_h", "h"], ["_m", "m"],
   ];
   for (const [suffix, unit] of units) if (key.endsWith(suffix)) return unit;
   return "";
@@ -63,12 +64,14 @@ export function getPointer(doc, pointer) {
   return v;
 }
 
+// Makes the objects on the way, an array where the next key is an index
+// (/gears/0/teeth).
 export function setPointer(doc, pointer, value) {
   const parts = pointer.split("/").slice(1);
   let v = doc;
-  for (const p of parts.slice(0, -1)) {
-    if (typeof v[p] !== "object" || v[p] === null) v[p] = {};
+  parts.slice(0, -1).forEach((p, i) => {
+    if (typeof v[p] !== "object" || v[p] === null) v[p] = /^\d+$/.test(parts[i + 1]) ? [] : {};
     v = v[p];
-  }
+  });
   v[parts[parts.length - 1]] = value;
 }

@@ -18,7 +18,13 @@ export function level(margin) {
 export function verdictRows(summary) {
   const r = summary?.analysis?.rating;
   if (!r) return [];
-  const rows = r.simulated ? staticRows(r) : r.K_v ? dynamicRows(r) : [];
+  return ranked(r.simulated ? staticRows(r) : r.K_v ? dynamicRows(r) : []);
+}
+
+// Rows {S, required, ...} with their margin and level, the smallest margin
+// (the governing mode) first; rows without both numbers are left out. The
+// rating view ranks its rows with this too.
+export function ranked(rows) {
   return rows
     .filter((row) => Number.isFinite(row.S) && Number.isFinite(row.required))
     .map((row) => ({ ...row, margin: row.S / row.required, level: level(row.S / row.required) }))
