@@ -8,74 +8,20 @@
 // test. Screenshots go to --screenshots DIR for people to look at.
 //
 //   node tests/browser/dashboard.test.mjs --gearsph build/gearsph --screenshots build/browser-screenshots
-import { spawn } from "node:child_process";
 import { mkdirSync, mkdtempSync, rmSync } from "node:fs";
 import { tmpdir } from "node:os";
-import { join, resolve } from "node:path";
-import { chromium } from "playwright-core";
+import { join } from "node:path";
+import { SHOTS, check, failures, openBrowser, startServer } from "./harness.mjs";
 
-function option(name, fallback) {
-  const i = process.argv.indexOf(`--${name}`);
-  return i > 0 ? process.argv[i + 1] : fallback;
-}
-const GEARSPH = resolve(option("gearsph", "build/gearsph"));
-const SHOTS = resolve(option("screenshots", "build/browser-screenshots"));
-const CHROMIUM = option("chromium", "/usr/bin/chromium");
 const STEP_TIMEOUT = 120_000;
-
-const failures = [];
-function check(condition, message) {
-  if (!condition) {
-    failures.push(message);
-    console.error(`FAIL: ${message}`);
-  } else {
-    console.log(`ok: ${message}`);
-  }
-}
-
-// --- the server ---
-function startServer(dataDir) {
-  return new Promise((resolvePromise, reject) => {
-    const child = spawn(GEARSPH, ["serve", "--port", "0", "--data", dataDir, "--workers", "2",
-      "--threads-per-job", "1"], { stdio: ["ignore", "pipe", "pipe"] });
-    let out = "", err = "";
-    const timer = setTimeout(() => reject(new Error(`the server did not start:\n${out}${err}`)), 60_000);
-    child.stdout.on("data", (d) => {
-      out += d;
-      const m = out.match(/listening on (http:\/\/[\d.]+:\d+)/);
-      if (m) {
-        clearTimeout(timer);
-        resolvePromise({ child, url: m[1], log: () => out + err });
-      }
-    });
-    child.stderr.on("data", (d) => (err += d));
-    child.on("exit", (code) => {
-      clearTimeout(timer);
-      reject(new Error(`gearsph serve exited with ${code}:\n${out}${err}`));
-    });
-  });
-}
 
 const scratch = mkdtempSync(join(tmpdir(), "gearsph-browser-"));
 mkdirSync(SHOTS, { recursive: true });
 rmSync(join(SHOTS, "failure.png"), { force: true }); // from an earlier run
-const server = await startServer(join(scratch, "data"));
+const server = await startServer(join(scratch, "data"), ["--workers", "2", "--threads-per-job", "1"]);
 console.log(`server: ${server.url}`);
 
-const context = await chromium.launchPersistentContext(join(scratch, "profile"), {
-  executablePath: CHROMIUM,
-  headless: true,
-  args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-    "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-  viewport: { width: 1280, height: 800 },
-});
-const page = context.pages()[0] || (await context.newPage());
-page.setDefaultTimeout(STEP_TIMEOUT);
-const consoleErrors = [];
-page.on("console", (msg) => {
-  if (msg.type() === "error") consoleErrors.push(`${msg.text()} (${msg.location().url || "?"})`);
-});
-page.on("pageerror", (e) => consoleErrors.push(`page error: ${e.message}`));
+const { context, page, consoleErrors } = await openBrowser(join(scratch, "profile"), { timeout: STEP_TIMEOUT });
 
 // The whole page, or (viewport) what the window shows: the job form's
 // sticky submit bar is only where a user sees it in the latter; or

@@ -7,74 +7,20 @@
 // error fails the test.
 //
 //   node tests/browser/fe_failed.test.mjs --gearsph build/gearsph --screenshots build/browser-screenshots
-import { spawn } from "node:child_process";
 import { chmodSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
-import { join, resolve } from "node:path";
-import { chromium } from "playwright-core";
-
-function option(name, fallback) {
-  const i = process.argv.indexOf(`--${name}`);
-  return i > 0 ? process.argv[i + 1] : fallback;
-}
-const GEARSPH = resolve(option("gearsph", "build/gearsph"));
-const SHOTS = resolve(option("screenshots", "build/browser-screenshots"));
-const CHROMIUM = option("chromium", "/usr/bin/chromium");
-
-const failures = [];
-function check(condition, message) {
-  if (!condition) {
-    failures.push(message);
-    console.error(`FAIL: ${message}`);
-  } else {
-    console.log(`ok: ${message}`);
-  }
-}
-
-function startServer(dataDir, env) {
-  return new Promise((resolvePromise, reject) => {
-    const child = spawn(GEARSPH, ["serve", "--port", "0", "--data", dataDir, "--threads-per-job", "1"],
-      { stdio: ["ignore", "pipe", "pipe"], env: { ...process.env, ...env } });
-    let out = "", err = "";
-    const timer = setTimeout(() => reject(new Error(`the server did not start:\n${out}${err}`)), 60_000);
-    child.stdout.on("data", (d) => {
-      out += d;
-      const m = out.match(/listening on (http:\/\/[\d.]+:\d+)/);
-      if (m) {
-        clearTimeout(timer);
-        resolvePromise({ child, url: m[1], log: () => out + err });
-      }
-    });
-    child.stderr.on("data", (d) => (err += d));
-    child.on("exit", (code) => {
-      clearTimeout(timer);
-      reject(new Error(`gearsph serve exited with ${code}:\n${out}${err}`));
-    });
-  });
-}
+import { join } from "node:path";
+import { SHOTS, check, failures, openBrowser, startServer } from "./harness.mjs";
 
 const scratch = mkdtempSync(join(tmpdir(), "gearsph-browser-fe-"));
 mkdirSync(SHOTS, { recursive: true });
 const gmsh = join(scratch, "gmsh");
 writeFileSync(gmsh, "#!/bin/sh\necho 'meshing failed: the stand-in gmsh of the browser test' >&2\nexit 1\n");
 chmodSync(gmsh, 0o755);
-const server = await startServer(join(scratch, "data"), { GEARSPH_GMSH: gmsh, GEARSPH_CCX: "/bin/true" });
+const server = await startServer(join(scratch, "data"), ["--threads-per-job", "1"], { GEARSPH_GMSH: gmsh, GEARSPH_CCX: "/bin/true" });
 console.log(`server: ${server.url}`);
 
-const context = await chromium.launchPersistentContext(join(scratch, "profile"), {
-  executablePath: CHROMIUM,
-  headless: true,
-  args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-    "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-  viewport: { width: 1280, height: 800 },
-});
-const page = context.pages()[0] || (await context.newPage());
-page.setDefaultTimeout(120_000);
-const consoleErrors = [];
-page.on("console", (msg) => {
-  if (msg.type() === "error") consoleErrors.push(`${msg.text()} (${msg.location().url || "?"})`);
-});
-page.on("pageerror", (e) => consoleErrors.push(`page error: ${e.message}`));
+const { context, page, consoleErrors } = await openBrowser(join(scratch, "profile"), { timeout: 120_000 });
 
 // The badge's colours: the stylesheet's --bad (red text) on --bad-soft.
 async function badgeColours(locator) {

@@ -8,76 +8,23 @@
 // 400 fails the test.
 //
 //   node tests/browser/rating.test.mjs --gearsph build/gearsph --screenshots build/browser-screenshots
-import { spawn } from "node:child_process";
 import { copyFileSync, mkdirSync, mkdtempSync, rmSync } from "node:fs";
 import { tmpdir } from "node:os";
-import { join, resolve } from "node:path";
-import { chromium } from "playwright-core";
+import { join } from "node:path";
+import { SHOTS, check, failures, openBrowser, startServer } from "./harness.mjs";
 
-function option(name, fallback) {
-  const i = process.argv.indexOf(`--${name}`);
-  return i > 0 ? process.argv[i + 1] : fallback;
-}
-const GEARSPH = resolve(option("gearsph", "build/gearsph"));
-const SHOTS = resolve(option("screenshots", "build/browser-screenshots"));
-const CHROMIUM = option("chromium", "/usr/bin/chromium");
-
-const failures = [];
-function check(condition, message) {
-  if (!condition) {
-    failures.push(message);
-    console.error(`FAIL: ${message}`);
-  } else {
-    console.log(`ok: ${message}`);
-  }
-}
 const within = (value, reference, tolerance) => Math.abs(value / reference - 1) <= tolerance;
-
-function startServer(dataDir) {
-  return new Promise((resolvePromise, reject) => {
-    const child = spawn(GEARSPH, ["serve", "--port", "0", "--data", dataDir, "--threads-per-job", "1"],
-      { stdio: ["ignore", "pipe", "pipe"] });
-    let out = "", err = "";
-    const timer = setTimeout(() => reject(new Error(`the server did not start:\n${out}${err}`)), 60_000);
-    child.stdout.on("data", (d) => {
-      out += d;
-      const m = out.match(/listening on (http:\/\/[\d.]+:\d+)/);
-      if (m) {
-        clearTimeout(timer);
-        resolvePromise({ child, url: m[1], log: () => out + err });
-      }
-    });
-    child.stderr.on("data", (d) => (err += d));
-    child.on("exit", (code) => {
-      clearTimeout(timer);
-      reject(new Error(`gearsph serve exited with ${code}:\n${out}${err}`));
-    });
-  });
-}
 
 const scratch = mkdtempSync(join(tmpdir(), "gearsph-browser-rating-"));
 mkdirSync(SHOTS, { recursive: true });
-const server = await startServer(join(scratch, "data"));
+const server = await startServer(join(scratch, "data"), ["--threads-per-job", "1"]);
 console.log(`server: ${server.url}`);
 
-const context = await chromium.launchPersistentContext(join(scratch, "profile"), {
-  executablePath: CHROMIUM,
-  headless: true,
-  args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-    "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-  viewport: { width: 1280, height: 800 },
-});
-const page = context.pages()[0] || (await context.newPage());
-page.setDefaultTimeout(60_000);
-const consoleErrors = [];
-page.on("console", (msg) => {
-  if (msg.type() !== "error") return;
-  const url = msg.location().url || "";
+const { context, page, consoleErrors } = await openBrowser(join(scratch, "profile"), {
+  timeout: 60_000,
   // The refusal this test provokes: the browser logs the 400 of POST /rating.
-  if (url.endsWith("/rating") && /status of 400/.test(msg.text())) return;
-  consoleErrors.push(`${msg.text()} (${url || "?"})`);
+  expected: (msg) => (msg.location().url || "").endsWith("/rating") && /status of 400/.test(msg.text()),
 });
-page.on("pageerror", (e) => consoleErrors.push(`page error: ${e.message}`));
 
 // The shown S of a row of the safety table, as a number.
 async function shownSafety(kind, gear) {

@@ -6,76 +6,23 @@
 // reload does not ask again. Any console error fails the test.
 //
 //   node tests/browser/token.test.mjs --gearsph build/gearsph --screenshots build/browser-screenshots
-import { spawn } from "node:child_process";
 import { mkdirSync, mkdtempSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
-import { join, resolve } from "node:path";
-import { chromium } from "playwright-core";
+import { join } from "node:path";
+import { SHOTS, check, failures, openBrowser, startServer } from "./harness.mjs";
 
-function option(name, fallback) {
-  const i = process.argv.indexOf(`--${name}`);
-  return i > 0 ? process.argv[i + 1] : fallback;
-}
-const GEARSPH = resolve(option("gearsph", "build/gearsph"));
-const SHOTS = resolve(option("screenshots", "build/browser-screenshots"));
-const CHROMIUM = option("chromium", "/usr/bin/chromium");
 const TOKEN = "token for the dashboard test";
-
-const failures = [];
-function check(condition, message) {
-  if (!condition) {
-    failures.push(message);
-    console.error(`FAIL: ${message}`);
-  } else {
-    console.log(`ok: ${message}`);
-  }
-}
-
-function startServer(dataDir, tokenFile) {
-  return new Promise((resolvePromise, reject) => {
-    const child = spawn(GEARSPH, ["serve", "--port", "0", "--data", dataDir, "--threads-per-job", "1",
-      "--token-file", tokenFile], { stdio: ["ignore", "pipe", "pipe"] });
-    let out = "", err = "";
-    const timer = setTimeout(() => reject(new Error(`the server did not start:\n${out}${err}`)), 60_000);
-    child.stdout.on("data", (d) => {
-      out += d;
-      const m = out.match(/listening on (http:\/\/[\d.]+:\d+)/);
-      if (m) {
-        clearTimeout(timer);
-        resolvePromise({ child, url: m[1] });
-      }
-    });
-    child.stderr.on("data", (d) => (err += d));
-    child.on("exit", (code) => {
-      clearTimeout(timer);
-      reject(new Error(`gearsph serve exited with ${code}:\n${out}${err}`));
-    });
-  });
-}
 
 const scratch = mkdtempSync(join(tmpdir(), "gearsph-browser-token-"));
 mkdirSync(SHOTS, { recursive: true });
 const tokenFile = join(scratch, "token");
 writeFileSync(tokenFile, `${TOKEN}\n`);
-const server = await startServer(join(scratch, "data"), tokenFile);
+const server = await startServer(join(scratch, "data"), ["--threads-per-job", "1", "--token-file", tokenFile]);
 console.log(`server: ${server.url}`);
 const api = (path, init = {}) => fetch(server.url + path,
   { ...init, headers: { Authorization: `Bearer ${TOKEN}`, ...(init.headers || {}) } });
 
-const context = await chromium.launchPersistentContext(join(scratch, "profile"), {
-  executablePath: CHROMIUM,
-  headless: true,
-  args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-    "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-  viewport: { width: 1280, height: 800 },
-});
-const page = context.pages()[0] || (await context.newPage());
-page.setDefaultTimeout(120_000);
-const consoleErrors = [];
-page.on("console", (msg) => {
-  if (msg.type() === "error") consoleErrors.push(`${msg.text()} (${msg.location().url || "?"})`);
-});
-page.on("pageerror", (e) => consoleErrors.push(`page error: ${e.message}`));
+const { context, page, consoleErrors } = await openBrowser(join(scratch, "profile"), { timeout: 120_000 });
 const refused = [];
 page.on("response", (r) => {
   if (r.status() === 401) refused.push(r.url());
