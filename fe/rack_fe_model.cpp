@@ -23,9 +23,13 @@ RackFeResult solve_rack_fe(const GearFeCase& c, const GearLoadPatch& load, doubl
                            const FeTools& tools, const std::filesystem::path& work_dir,
                            const std::string& name, int threads, double timeout_s) {
   geometry::RackSpec rs;
-  // The static check's rack (geometry/mesh_placement.hpp): the same root.
-  rs.profile = geometry::static_check_rack_profile(geometry::PinionGeometry(c.pinion));
+  // The static check's rack of one tooth (geometry/mesh_placement.hpp): the
+  // same root, the same tip.
   rs.teeth = 1;
+  const geometry::MatingRackShape shape =
+      geometry::mating_rack_shape(geometry::PinionGeometry(c.pinion), rs.teeth);
+  rs.profile = shape.profile;
+  rs.tip_radius_coef = shape.tip_radius_coef;
   rs.back_thickness_m = c.rack_back_m > 0.0 ? c.rack_back_m : 2.0 * rs.profile.module_m;
   rs.backlash_m = c.rack_backlash_m;
   const geometry::RackGeometry rack(rs);

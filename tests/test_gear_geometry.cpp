@@ -541,29 +541,84 @@ TEST(GearGeometry, ShiftedPinionSitsAtCentreDistanceRPlusXm) {
   EXPECT_LT(gap, 0.5 * kMicron);  // tight mesh
 }
 
-// A static check's rack keeps its straight flank 0.05 m below where the
+// The modelled rack keeps its straight flank 0.05 m below where the
 // pinion's tip reaches (a standard tip: 1.0 m below the datum line at any
 // shift). ISO 53 A at 20 degrees ends it at 0.99996 m, inside the tip's
 // reach, so its root fillet shrinks to (1.25 - 1.05) / (1 - sin 20 deg) =
 // 0.304 m; at 16 degrees to 0.276 m; at 25 degrees the default tool's 0.29 m
 // already clears (its flank ends at 1.083 m) and is kept.
-TEST(GearGeometry, AStaticChecksRackKeepsItsFlankBelowThePinionsTip) {
+TEST(GearGeometry, TheModelledRackKeepsItsFlankBelowThePinionsTip) {
   for (const double x : {-0.35, 0.0, 0.5}) {
     const PinionGeometry pinion(pinion_spec(25, 3.5e-3, 20.0, x));
     EXPECT_NEAR(tip_reach_below_datum(pinion), 3.5e-3, 1e-12) << x;
-    const BasicRack rack = static_check_rack_profile(pinion);
+    const BasicRack rack = mating_rack_shape(pinion, 1).profile;
     EXPECT_NEAR(rack.root_radius_coef, 0.2 / (1.0 - std::sin(20.0 * std::numbers::pi / 180.0)),
                 1e-9)
         << x;
     EXPECT_NEAR(rack.straight_flank_depth(), 1.05 * 3.5e-3, 1e-12) << x;
   }
   const PinionGeometry low(pinion_spec(57, 3.25e-3, 16.0, -0.25));
-  EXPECT_NEAR(static_check_rack_profile(low).root_radius_coef,
+  EXPECT_NEAR(mating_rack_shape(low, 1).profile.root_radius_coef,
               0.2 / (1.0 - std::sin(16.0 * std::numbers::pi / 180.0)), 1e-9);
   PinionSpec wide = pinion_spec(25, 3.5e-3, 25.0, 0.0);
   wide.tool.root_radius_coef = wide.tool.default_root_radius_coef(0.0);
   const PinionGeometry steep(wide);
-  EXPECT_EQ(static_check_rack_profile(steep).root_radius_coef, wide.tool.root_radius_coef);
+  EXPECT_EQ(mating_rack_shape(steep, 1).profile.root_radius_coef, wide.tool.root_radius_coef);
+}
+
+// The modelled rack's tip is rounded so that its straight flank ends 0.05 m
+// below the pinion's form circle, which the cutter's flank end generated at
+// h_fP - rho_fP (1 - sin alpha) above the datum line: ISO 53 A at 20 degrees
+// puts it at 0.99996 m, inside the rack's 1.0 m addendum, so the round is
+// (1.0 - 0.99996 + 0.05) / (1 - sin 20 deg) = 0.0761 m; at 16 degrees the form
+// is lower (0.9747 m) and the round larger, 0.1039 m; a 25 degree tool's
+// 0.29 m fillet ends its flank at 1.083 m and the tip stays sharp. On the
+// built outline the flank is straight up to that height and falls away from
+// the flank line above it. A rack of one tooth (a static check's) keeps the
+// sharp tip: its driving flank bears on tooth 0 and its reverse flank
+// touches nothing, so its tip meets no fillet.
+TEST(GearGeometry, TheModelledRackRoundsItsTipClearOfThePinionsFillet) {
+  const double m = 3.5e-3;
+  auto round = [&](double alpha_deg, double rho_fP) {
+    PinionSpec spec = pinion_spec(25, m, alpha_deg, 0.0);
+    spec.tool.root_radius_coef = rho_fP;
+    return mating_rack_shape(PinionGeometry(spec), 3).tip_radius_coef;
+  };
+  const auto tip_round = [](double alpha_deg, double rho_fP) {
+    const double s = std::sin(alpha_deg * std::numbers::pi / 180.0);
+    const double form = 1.25 - rho_fP * (1.0 - s);
+    return (1.0 - form + 0.05) / (1.0 - s);
+  };
+  EXPECT_NEAR(round(20.0, 0.38), tip_round(20.0, 0.38), 1e-9);
+  EXPECT_NEAR(round(20.0, 0.38), 0.0761, 1e-4);
+  EXPECT_NEAR(round(16.0, 0.38), 0.1039, 1e-4);
+  EXPECT_EQ(round(25.0, 0.29), 0.0);
+  // A rack of one tooth keeps the sharp tip: its tip meets no fillet.
+  EXPECT_EQ(mating_rack_shape(PinionGeometry(pinion_spec(25, m, 20.0, 0.0)), 1).tip_radius_coef,
+            0.0);
+
+  for (const double x : {-0.3, 0.0, 0.4}) {
+    const PinionGeometry pinion(pinion_spec(25, m, 20.0, x));
+    const MatingRackShape shape = mating_rack_shape(pinion, 3);
+    RackSpec rs;
+    rs.profile = shape.profile;
+    rs.tip_radius_coef = shape.tip_radius_coef;
+    const RackGeometry rack(rs);
+    const double a = rs.profile.pressure_angle_rad;
+    const double flank_top = pinion.spec().tool.straight_flank_depth() - 0.05 * m;
+    int above = 0;
+    for (const Point& q : rack.half_tooth()) {
+      const double on_line = rack.datum_thickness() / 2.0 - q.y * std::tan(a);
+      if (q.y < -rs.profile.straight_flank_depth()) continue;  // the root fillet
+      if (q.y <= flank_top + 1e-12) {
+        EXPECT_NEAR(q.x, on_line, 1e-9) << "x " << x << ", y " << q.y;
+      } else if (q.y < rack.tip_y() - 1e-12) {
+        EXPECT_LT(q.x, on_line - 1e-12) << "x " << x << ", y " << q.y;
+        ++above;
+      }
+    }
+    EXPECT_GT(above, 3) << x;  // the round is sampled
+  }
 }
 
 // ---------------------------------------------------------------------------

@@ -18,6 +18,11 @@ double BasicRack::root_radius_clearing(double reach, double clearance) const {
   return std::clamp(largest, 0.0, root_radius());
 }
 
+// A tip round of radius rho ends the flank at h_aP - rho (1 - sin alpha).
+double BasicRack::tip_radius_clearing(double form, double clearance) const {
+  return std::max(0.0, (addendum() - form + clearance) / (1.0 - std::sin(pressure_angle_rad)));
+}
+
 // Fillet centre at depth h_fP - rho on the space side of the flank; it reaches
 // the space centre line when (p/4 + w/2) - (h_fP - rho) tan(alpha) = rho / cos(alpha).
 double BasicRack::max_root_radius(double widening) const {

@@ -40,6 +40,11 @@ struct BasicRack {
   // enters below the datum line: the profile's own where that clears, else
   // the largest that does (0 at most: a sharp root corner).
   double root_radius_clearing(double reach, double clearance) const;
+  // The mating rack's tip round radius [m] that ends its straight flank at
+  // least `clearance` [m] below the height `form` [m] above the datum line
+  // where the pinion's involute begins (its cutter's straight_flank_depth):
+  // 0 where a sharp tip already clears.
+  double tip_radius_clearing(double form, double clearance) const;
   // Throws std::invalid_argument naming the first bad value.
   void validate(double widening) const;
 };

@@ -11,13 +11,18 @@ double tip_reach_below_datum(const PinionGeometry& pinion) {
   return pinion.tip_radius() - pinion.pitch_radius() - pinion.spec().profile_shift * t.module_m;
 }
 
-BasicRack static_check_rack_profile(const PinionGeometry& pinion) {
-  constexpr double kRootClearanceModules = 0.05;
-  BasicRack rack = pinion.spec().tool;
-  const double clear = rack.root_radius_clearing(tip_reach_below_datum(pinion),
-                                                 kRootClearanceModules * rack.module_m);
-  rack.root_radius_coef = clear / rack.module_m;
-  return rack;
+MatingRackShape mating_rack_shape(const PinionGeometry& pinion, int rack_teeth) {
+  constexpr double kClearanceModules = 0.05;
+  const BasicRack& tool = pinion.spec().tool;
+  const double clearance = kClearanceModules * tool.module_m;
+  MatingRackShape shape{tool, 0.0};
+  shape.profile.root_radius_coef =
+      tool.root_radius_clearing(tip_reach_below_datum(pinion), clearance) / tool.module_m;
+  if (rack_teeth > 1) {
+    shape.tip_radius_coef =
+        tool.tip_radius_clearing(tool.straight_flank_depth(), clearance) / tool.module_m;
+  }
+  return shape;
 }
 
 MeshPlacement place_in_mesh(const PinionGeometry& pinion, const RackGeometry& rack,

@@ -33,16 +33,32 @@ struct MeshPlacement {
 // shift).
 double tip_reach_below_datum(const PinionGeometry& pinion);
 
-// The profile of a rack a static check loads against the pinion: the
-// pinion's tool, its root fillet kept a twentieth of a module below the
-// pinion tip's reach. ISO 53 A's straight flank ends 4e-5 m above a standard
-// tip's reach (h_fP - rho_fP (1 - sin alpha) = 0.99996 m at 20 degrees) and
-// above it at smaller pressure angles, so the tip corner met the rack's root
-// fillet where it meets the flank: its force turned radial and put tooth 0's
-// load 26 % above the rack's at the tip (docs/validation.md, "Wedged racks").
-// 0.05 m keeps the flank particle at the tip's reach off the fillet at the
+// The mating rack as modelled, in static checks, dynamic runs and the FE
+// check alike: the pinion's tool, with two clearances of a twentieth of a
+// module each where the rack's straight flank would otherwise end on the
+// pinion's and a corner would bear on a flank.
+// - Root: the fillet kept below the pinion tip's reach. ISO 53 A's straight
+//   flank ends 4e-5 m above a standard tip's reach (h_fP - rho_fP (1 - sin
+//   alpha) = 0.99996 m at 20 degrees) and above it at smaller pressure
+//   angles, so the tip corner met the rack's root fillet where it meets the
+//   flank: its force turned radial and put tooth 0's load 26 % above the
+//   rack's at the tip (docs/validation.md, "Wedged racks").
+// - Tip: rounded so that its straight flank ends below the pinion's form
+//   circle, which the cutter's flank end generated at the same 0.99996 m: a
+//   sharp rack tip reaches it, and its corner jammed in the pinion's fillet
+//   as the tooth came into mesh (docs/validation.md, "The rack's tip").
+//   A rack of one tooth (a static check's, and its FE check's) keeps the
+//   tool's sharp tip: its driving flank bears on tooth 0 and its reverse
+//   flank touches nothing (rack_contact_side), so its tip meets no fillet,
+//   and the round would only move its outline's particles (the static
+//   check's mesh stiffness read 1.2 % lower with it).
+// 0.05 m keeps the flank particle at either end off the round at the
 // default spacings (a flank spacing is 0.1-0.2 m).
-BasicRack static_check_rack_profile(const PinionGeometry& pinion);
+struct MatingRackShape {
+  BasicRack profile;           // the tool's, its root radius cleared
+  double tip_radius_coef = 0;  // RackSpec::tip_radius_coef
+};
+MatingRackShape mating_rack_shape(const PinionGeometry& pinion, int rack_teeth);
 
 MeshPlacement place_in_mesh(const PinionGeometry& pinion, const RackGeometry& rack,
                             Point pinion_centre, int pinion_tooth, int rack_space,

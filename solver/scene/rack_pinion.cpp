@@ -332,8 +332,10 @@ geometry::RackGeometry build_rack(const nlohmann::json& rj, const GearLayout& L,
                                   const geometry::PinionGeometry& pinion,
                                   const ModelledTeeth& teeth, double support) {
   geometry::RackSpec rs;
-  rs.profile = L.quasi_static ? geometry::static_check_rack_profile(pinion) : pinion.spec().tool;
   rs.teeth = teeth.rack_offsets.back() - teeth.rack_offsets.front() + 1;
+  const geometry::MatingRackShape shape = geometry::mating_rack_shape(pinion, rs.teeth);
+  rs.profile = shape.profile;
+  rs.tip_radius_coef = shape.tip_radius_coef;
   // Two modules unless given: the rack's body, like the pinion's rim,
   // follows the teeth (a fixed 8 mm made a module-3 rack's share of the mesh
   // compliance 40 % larger than a module-4 one's).
@@ -857,6 +859,7 @@ nlohmann::json describe_rack(const Simulation& sim, const GearLayout& L,
           {"bulk_spacing_m", L.spacing},
           {"pitch_m", rack.pitch()},
           {"root_radius_m", rack.spec().profile.root_radius()},
+          {"tip_radius_m", rack.spec().tip_radius_coef * rack.spec().profile.module_m},
           {"back_thickness_m", rack.spec().back_thickness_m - support},
           {"guided_layer_m", support},
           {"guided_back_particles", guided},
