@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "results/h5_series.hpp"
-#include "solver/core/simulation.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::results {
 

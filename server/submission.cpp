@@ -11,9 +11,9 @@
 #include "server/job_limits.hpp"
 #include "server/problem.hpp"
 #include "server/router.hpp"
+#include "solver/core/json_schema.hpp"
 #include "solver/job/job.hpp"
 #include "solver/job/job_size.hpp"
-#include "solver/job/json_schema.hpp"
 
 namespace gearsph::server {
 

@@ -311,46 +311,19 @@ int WorkerPool::offer_threads(int& held) {
   return std::max(1, std::min(options_.threads_per_job, held));
 }
 
-void WorkerPool::run(const JobRecord& job, int& held) {
-  auto rj = std::make_shared<RunningJob>();
-  rj->id = job.id;
-  rj->claim = job.claim;
-  rj->progress.steps = job.steps;
-  rj->progress.end_s = job.end_s;
-  rj->fe = runs_fe_check(nlohmann::json::parse(job.job_json, nullptr, false));
-  if (rj->fe) {
-    try {
-      rj->fe_estimate = estimate_fe_stage(store_);
-    } catch (const std::exception&) {
-      // The store away: the fallback figure will do for an estimate.
-    }
-  }
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    running_[job.id] = rj;
-  }
-  // Out of the running set however this ends (even if the store fails).
-  struct Unregister {
-    WorkerPool& pool;
-    const std::string& id;
-    ~Unregister() {
-      std::lock_guard<std::mutex> lock(pool.mutex_);
-      pool.running_.erase(id);
-    }
-  } unregister{*this, job.id};
-  log_line(LogLevel::info, "%s: job %s running (%s, attempt %d)\n", options_.log_name.c_str(),
-           job.id.c_str(), job.name.c_str(), job.attempts);
-  publish_status(job.id);
-
-  // This claim's own directory: published as the job's only once its
-  // finish is recorded under this claim (attempt_dirs.hpp).
-  const std::filesystem::path dir = attempt_dir(options_.jobs_dir, job.id, job.claim);
+struct WorkerPool::Attempt {
   JobStatus outcome = JobStatus::failed;
   bool cancelled = false;
   std::string message;
   ProgressUpdate last;
-  last.id = job.id;
-  std::int64_t steps = job.steps;
+  std::int64_t steps = 0;
+};
+
+WorkerPool::Attempt WorkerPool::attempt(const JobRecord& job, RunningJob& rj,
+                                        const std::filesystem::path& dir, int& held) {
+  Attempt a;
+  a.last.id = job.id;
+  a.steps = job.steps;
   try {
     // Nothing of an earlier attempt is mistaken for a result: their
     // directories go (a frozen holder's run then fails to write, and its
@@ -376,78 +349,83 @@ void WorkerPool::run(const JobRecord& job, int& held) {
       held -= spare;
       release_cores(spare);
     }
-    steps = prepared.steps;
-    Observer observer(*this, *rj);
+    a.steps = prepared.steps;
+    Observer observer(*this, rj);
     ExecuteOptions eo;
     eo.threads = options_.threads_per_job;
     eo.observer = &observer;
     const RunResult r = execute_prepared(prepared, dir, eo).run;
-    last.step = r.steps_done;
-    last.simulated_s = prepared.scene.sim.time;
-    last.wall_s = r.wall_s;
-    last.progress = percent(r.steps_done, prepared.steps);
-    const FeOutcome fe = rj->fe ? fe_outcome(r.summary, r.status, rj->fe_estimate) : FeOutcome{};
-    if (rj->fe) {
-      last.wall_s += fe.wall_s;
-      last.fe_check_json = fe.document.dump();
+    a.last.step = r.steps_done;
+    a.last.simulated_s = prepared.scene.sim.time;
+    a.last.wall_s = r.wall_s;
+    a.last.progress = percent(r.steps_done, prepared.steps);
+    const FeOutcome fe = rj.fe ? fe_outcome(r.summary, r.status, rj.fe_estimate) : FeOutcome{};
+    if (rj.fe) {
+      a.last.wall_s += fe.wall_s;
+      a.last.fe_check_json = fe.document.dump();
     }
-    if (r.status == "completed" && rj->fe && !fe.ok && observer.cancelled()) {
+    if (r.status == "completed" && rj.fe && !fe.ok && observer.cancelled()) {
       // The check was stopped, not failed: the job as a whole is.
-      cancelled = true;
+      a.cancelled = true;
     } else if (r.status == "completed") {
-      outcome = JobStatus::successful;
-      last.progress = 100;
-      message =
+      a.outcome = JobStatus::successful;
+      a.last.progress = 100;
+      a.message =
           "completed " + std::to_string(r.steps_done) + " steps in " + fixed(r.wall_s, 2) + " s";
-      if (rj->fe) message += "; " + fe.sentence;
+      if (rj.fe) a.message += "; " + fe.sentence;
     } else if (r.status == "cancelled") {
-      cancelled = true;
+      a.cancelled = true;
     } else {
-      message = "the run diverged: " + r.message;
+      a.message = "the run diverged: " + r.message;
     }
   } catch (const InvalidJob& e) {
-    message = std::string("the job cannot run: ") + e.what();
+    a.message = std::string("the job cannot run: ") + e.what();
   } catch (const std::exception& e) {
-    message = std::string("internal error: ") + e.what();
+    a.message = std::string("internal error: ") + e.what();
   }
+  return a;
+}
 
-  const std::string where = "step " + std::to_string(last.step) + " of " + std::to_string(steps);
+void WorkerPool::record(const JobRecord& job, const RunningJob& rj,
+                        const std::filesystem::path& dir, const Attempt& a) {
+  const std::string where =
+      "step " + std::to_string(a.last.step) + " of " + std::to_string(a.steps);
   const char* log = options_.log_name.c_str();
   bool published = false;
   auto record_outcome = [&] {
-    if (cancelled && !rj->dismissed && !rj->lost && stopping_) {
+    if (a.cancelled && !rj.dismissed && !rj.lost && stopping_) {
       ++counters().requeues;
       store_.requeue(job.id,
                      "re-queued: the server was stopped while this job ran (at " + where +
                          "); it starts again from the beginning when the server is back",
                      job.claim);
-    } else if (cancelled) {
+    } else if (a.cancelled) {
       // Dismissed: this run's files go before the job says it stopped, so
       // that a client who reads that finds none left.
       std::error_code gone;
       std::filesystem::remove_all(dir, gone);
       if (!store_.close_dismissed(job.id, "dismissed while running; the run stopped at " + where,
-                                  last) &&
-          rj->lost) {
+                                  a.last) &&
+          rj.lost) {
         ++counters().claims_lost;
         log_line(LogLevel::warning,
                  "%s: job %s stopped at %s: its claim was lost (its lease ran out and another "
                  "worker claimed it, or it ended); this run's files were discarded\n",
                  log, job.id.c_str(), where.c_str());
       }
-    } else if (store_.finish(job.id, outcome, message, last, job.claim)) {
+    } else if (store_.finish(job.id, a.outcome, a.message, a.last, job.claim)) {
       published = true;
     } else if (!store_.close_dismissed(
                    job.id,
                    "dismissed while running; the run had just " +
-                       std::string(outcome == JobStatus::successful ? "completed" : "failed"),
-                   last)) {
+                       std::string(a.outcome == JobStatus::successful ? "completed" : "failed"),
+                   a.last)) {
       ++counters().claims_lost;
       log_line(LogLevel::warning,
                "%s: job %s: this run %s, but its claim was lost meanwhile (another worker "
                "claimed the job after the lease ran out); the other run's outcome stands and "
                "this run's files were discarded\n",
-               log, job.id.c_str(), outcome == JobStatus::successful ? "completed" : "failed");
+               log, job.id.c_str(), a.outcome == JobStatus::successful ? "completed" : "failed");
     }
   };
   // A shared store may be down: a finished run is kept until its outcome is
@@ -484,15 +462,53 @@ void WorkerPool::run(const JobRecord& job, int& held) {
     std::error_code ec;
     std::filesystem::remove_all(dir, ec);
   }
-  const auto record = store_.job(job.id);
-  if (record && record->status == JobStatus::dismissed) {
+}
+
+void WorkerPool::run(const JobRecord& job, int& held) {
+  auto rj = std::make_shared<RunningJob>();
+  rj->id = job.id;
+  rj->claim = job.claim;
+  rj->progress.steps = job.steps;
+  rj->progress.end_s = job.end_s;
+  rj->fe = runs_fe_check(nlohmann::json::parse(job.job_json, nullptr, false));
+  if (rj->fe) {
+    try {
+      rj->fe_estimate = estimate_fe_stage(store_);
+    } catch (const std::exception&) {
+      // The store away: the fallback figure will do for an estimate.
+    }
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    running_[job.id] = rj;
+  }
+  // Out of the running set however this ends (even if the store fails).
+  struct Unregister {
+    WorkerPool& pool;
+    const std::string& id;
+    ~Unregister() {
+      std::lock_guard<std::mutex> lock(pool.mutex_);
+      pool.running_.erase(id);
+    }
+  } unregister{*this, job.id};
+  log_line(LogLevel::info, "%s: job %s running (%s, attempt %d)\n", options_.log_name.c_str(),
+           job.id.c_str(), job.name.c_str(), job.attempts);
+  publish_status(job.id);
+
+  // This claim's own directory: published as the job's only once its
+  // finish is recorded under this claim (attempt_dirs.hpp).
+  const std::filesystem::path dir = attempt_dir(options_.jobs_dir, job.id, job.claim);
+  record(job, *rj, dir, attempt(job, *rj, dir, held));
+  const char* log = options_.log_name.c_str();
+  const auto stored = store_.job(job.id);
+  if (stored && stored->status == JobStatus::dismissed) {
     // Dismissed while it ran: whatever was published goes too.
     std::error_code ec;
     std::filesystem::remove_all(options_.jobs_dir / job.id, ec);
   }
   log_line(LogLevel::info, "%s: job %s %s: %s\n", log, job.id.c_str(),
-           record ? std::string(to_string(record->status)).c_str() : "?",
-           record ? record->message.c_str() : "");
+           stored ? std::string(to_string(stored->status)).c_str() : "?",
+           stored ? stored->message.c_str() : "");
   publish_status(job.id);
 }
 

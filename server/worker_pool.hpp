@@ -83,6 +83,16 @@ class WorkerPool : public Dispatcher {
   // core, taken before the claim; the job may take more, and hands back
   // what it is not worth).
   void run(const JobRecord& job, int& held);
+  // What one run of a claimed job came to (worker_pool.cpp).
+  struct Attempt;
+  // The run itself, into its claim's directory `dir`: the simulation and,
+  // when the job asks for it, the FE check.
+  Attempt attempt(const JobRecord& job, RunningJob& rj, const std::filesystem::path& dir,
+                  int& held);
+  // Records the attempt's outcome under its claim, trying again while the
+  // store is away; then publishes `dir` as the job's files, or discards it.
+  void record(const JobRecord& job, const RunningJob& rj, const std::filesystem::path& dir,
+              const Attempt& a);
   // The most threads the next job may take; in core_budget mode takes the
   // free cores into `held` when no other job waits.
   int offer_threads(int& held);

@@ -5,13 +5,13 @@
 #include <cmath>
 #include <random>
 
-#include "solver/core/simulation.hpp"
 #include "solver/diagnostics/energy.hpp"
 #include "solver/integrate/integrator.hpp"
 #include "solver/integrate/time_step.hpp"
 #include "solver/job/job.hpp"
 #include "solver/physics/artificial_viscosity.hpp"
 #include "solver/physics/momentum.hpp"
+#include "solver/physics/simulation.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 #include "solver/physics/velocity_gradient.hpp"
 #include "solver/run/runner.hpp"

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <numbers>
 
-#include "solver/core/simulation.hpp"
 #include "solver/diagnostics/energy.hpp"
 #include "solver/integrate/integrator.hpp"
 #include "solver/job/job.hpp"
@@ -14,6 +13,7 @@
 #include "solver/physics/contact_near_field.hpp"
 #include "solver/physics/contact_seed_penalty.hpp"
 #include "solver/physics/contact_surface.hpp"
+#include "solver/physics/simulation.hpp"
 #include "solver/run/runner.hpp"
 #include "tests/support/paper_static_check.hpp"
 

@@ -16,11 +16,11 @@
 #include <cmath>
 #include <vector>
 
-#include "solver/core/simulation.hpp"
 #include "solver/diagnostics/energy.hpp"
 #include "solver/integrate/integrator.hpp"
 #include "solver/job/job.hpp"
 #include "solver/physics/contact.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph {
 namespace {

@@ -7,10 +7,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "solver/core/json_schema.hpp"
 #include "solver/integrate/integrator.hpp"
 #include "solver/integrate/stability.hpp"
 #include "solver/job/job.hpp"
-#include "solver/job/json_schema.hpp"
 #include "solver/run/runner.hpp"
 #include "tests/support/job_issues.hpp"
 
@@ -84,6 +84,47 @@ TEST(Jobs, ARunRecordsAtMostTheSamplesAndFramesAskedFor) {
   EXPECT_LE(r.history.rows(), static_cast<std::size_t>(wanted + 1));
   EXPECT_GE(r.history.rows(), static_cast<std::size_t>(wanted / 2));
   EXPECT_EQ(r.history.column("time_s").back(), prepared.scene.sim.time);  // the last step
+}
+
+// A scene may end its run before the last step once the run holds what it
+// was run for (Scene::ends_early: a dynamic run's steady mesh). The run
+// then completes there with the reason in its summary, and its history
+// ends at the step it stopped on.
+TEST(Jobs, ARunEndsEarlyWhenItsSceneSaysSo) {
+  PreparedJob prepared = prepare_job(kPlate, 1);
+  const std::int64_t steps = prepared.steps;
+  ASSERT_GE(steps, 40);
+  prepared.scene.ends_early = [](const History& h) {
+    return h.rows() >= 5 ? std::string("five rows") : std::string();
+  };
+  const RunResult r = run_job(prepared);
+  ASSERT_EQ(r.status, "completed") << r.message;
+  EXPECT_EQ(r.history.rows(), 5u);
+  EXPECT_LT(r.steps_done, steps);
+  EXPECT_EQ(r.summary.at("ended_early"), "five rows");
+  EXPECT_EQ(r.history.column("time_s").back(), prepared.scene.sim.time);
+}
+
+// /scene/steady_mesh_periods ends a loaded dynamic run: a static check and
+// a run without a load are refused at it, with the reason.
+TEST(Jobs, TheSteadyMeshEndIsAskedOnlyOfALoadedDynamicRun) {
+  const json coarse = {{"particles", "lattice"}, {"spacing_mm", 2.0}};
+  const json still = {{"scene",
+                       {{"type", "rack_pinion"},
+                        {"quasi_static", true},
+                        {"steady_mesh_periods", 20},
+                        {"pinion", {{"omega_rad_s", 0.0}}},
+                        {"rack", {{"velocity_m_s", 0.0}, {"load_N", 1000.0}}}}},
+                      {"discretization", coarse}};
+  auto issues = issues_of(still);
+  EXPECT_TRUE(has_issue(issues, "/scene/steady_mesh_periods", "quasi-static")) << describe(issues);
+  const json unloaded = {{"scene", {{"type", "rack_pinion"}, {"steady_mesh_periods", 20}}},
+                         {"discretization", coarse}};
+  issues = issues_of(unloaded);
+  EXPECT_TRUE(has_issue(issues, "/scene/steady_mesh_periods", "not loaded")) << describe(issues);
+  json loaded = unloaded;
+  loaded["scene"]["rack"] = {{"load_N", 1000.0}};
+  EXPECT_TRUE(issues_of(loaded).empty()) << describe(issues_of(loaded));
 }
 
 TEST(Jobs, ADefaultHistoryIsSampledByTimeUnlessTheSceneReadsEveryStep) {

@@ -1,4 +1,4 @@
-#include "solver/job/json_schema.hpp"
+#include "solver/core/json_schema.hpp"
 
 #include <gtest/gtest.h>
 

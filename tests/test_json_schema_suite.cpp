@@ -17,7 +17,7 @@
 #include <utility>
 #include <vector>
 
-#include "solver/job/json_schema.hpp"
+#include "solver/core/json_schema.hpp"
 
 namespace {
 

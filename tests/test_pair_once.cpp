@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "solver/core/row_chunks.hpp"
-#include "solver/core/simulation.hpp"
 #include "solver/integrate/integrator.hpp"
 #include "solver/job/job.hpp"
 #include "solver/neighbours/neighbour_list.hpp"
+#include "solver/physics/simulation.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 #include "tests/support/steel_block.hpp"
 

@@ -1,13 +1,14 @@
 // The executor of a step's pass table (core/passes.hpp): the order of the
 // passes, the barriers a table asks for, passes that are off, the stop
 // flag, the passes on the calling thread between regions, and the clock
-// that times each pass by name.
+// that times each pass by name; blocks handed out as threads come free.
 #include <gtest/gtest.h>
 
 #include <omp.h>
 
 #include <atomic>
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -154,6 +155,26 @@ TEST(Passes, TheClockTimesEachPassByName) {
   }
   EXPECT_EQ(names, (std::vector<std::string>{"first", "second", "threads start and join"}));
   EXPECT_GT(times.total_seconds(), 0.0);
+}
+
+// Blocks handed out as threads come free (over_blocks): every item runs
+// exactly once on any team, a last block shorter than the rest included,
+// and an item's exception reaches the caller.
+TEST(Passes, OverBlocksRunsEveryItemOnceAndPassesOnAnError) {
+  for (int threads : {1, 2, 3}) {
+    for (std::size_t block : {1, 7, 64}) {
+      std::vector<std::atomic<int>> ran(1000);
+      over_blocks("items", ran.size(), block, threads, [&](std::size_t i) { ++ran[i]; });
+      int wrong = 0;
+      for (const auto& r : ran) wrong += r.load() != 1;
+      EXPECT_EQ(wrong, 0) << threads << " threads, blocks of " << block;
+    }
+    EXPECT_THROW(over_blocks("items", 100, 8, threads,
+                             [](std::size_t i) {
+                               if (i == 42) throw std::runtime_error("item 42");
+                             }),
+                 std::runtime_error);
+  }
 }
 
 }  // namespace

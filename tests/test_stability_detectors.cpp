@@ -11,10 +11,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "solver/core/simulation.hpp"
 #include "solver/diagnostics/health.hpp"
 #include "solver/integrate/integrator.hpp"
 #include "solver/job/job.hpp"
+#include "solver/physics/simulation.hpp"
 #include "solver/run/runner.hpp"
 
 namespace gearsph {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "solver/core/simulation.hpp"
+#include "solver/physics/simulation.hpp"
 #include "solver/physics/stress_rate.hpp"
 
 namespace gearsph {

@@ -242,4 +242,33 @@ Sums over_shares(const char* name, std::size_t count, int threads, F&& f) {
   return run_passes<Sums>(pass, threads, kNeverStop);
 }
 
+// The threads a run takes when it asks for none: OpenMP's default
+// (OMP_NUM_THREADS, else the cores).
+inline int available_threads() {
+  return omp_get_max_threads();
+}
+
+// For passes that add up nothing.
+struct NoSums {
+  NoSums& operator+=(const NoSums&) { return *this; }
+};
+
+// One pass over `count` items whose costs differ widely (a clipped Voronoi
+// cell against one wholly inside): blocks of `block` items handed out in
+// turn as threads come free, f(i) for each item. Which thread runs an item
+// then depends on timing, so f must write item i's result alone.
+template <class F>
+void over_blocks(const char* name, std::size_t count, std::size_t block, int threads, F&& f) {
+  std::atomic<std::size_t> next{0};
+  auto work = [&](int, int, NoSums&) {
+    for (std::size_t lo = next.fetch_add(block); lo < count; lo = next.fetch_add(block)) {
+      const std::size_t hi = std::min(count, lo + block);
+      for (std::size_t i = lo; i < hi; ++i) f(i);
+    }
+  };
+  const Pass<NoSums> pass[] = {{name, Runs::OnEveryThread, nullptr, work, Sync::Barrier, true}};
+  constexpr std::size_t kNeverStop = 0;
+  run_passes<NoSums>(pass, threads, kNeverStop);
+}
+
 }  // namespace gearsph

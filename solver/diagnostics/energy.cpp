@@ -1,8 +1,8 @@
 #include "solver/diagnostics/energy.hpp"
 
-#include "solver/core/simulation.hpp"
 #include "solver/physics/crack_face_contact.hpp"
 #include "solver/physics/elastic_law.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::diagnostics {
 

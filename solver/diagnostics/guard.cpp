@@ -4,8 +4,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "solver/core/simulation.hpp"
 #include "solver/diagnostics/divergence.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::diagnostics {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "solver/core/simulation.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::diagnostics {
 

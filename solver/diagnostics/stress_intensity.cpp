@@ -4,8 +4,8 @@
 #include <numbers>
 #include <utility>
 
-#include "solver/core/simulation.hpp"
 #include "solver/physics/crack_face_contact.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::diagnostics {
 

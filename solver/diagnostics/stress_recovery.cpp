@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "solver/core/simulation.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::diagnostics {
 

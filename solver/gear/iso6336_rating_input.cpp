@@ -1,10 +1,10 @@
 // The rating document to RatingInput: schema check (valijson through
-// solver/job/json_schema), defaults, and the rules the schema cannot say.
+// solver/core/json_schema), defaults, and the rules the schema cannot say.
 #include <cmath>
 #include <numbers>
 
+#include "solver/core/json_schema.hpp"
 #include "solver/gear/iso6336_rating.hpp"
-#include "solver/job/json_schema.hpp"
 
 namespace gearsph {
 extern const char* const kRatingSchemaText;

@@ -14,6 +14,8 @@
 #include <boost/geometry/index/rtree.hpp>
 #include <boost/polygon/voronoi.hpp>
 
+#include "solver/core/passes.hpp"
+
 namespace gearsph::geometry {
 
 namespace bg = boost::geometry;
@@ -130,17 +132,17 @@ ClippedVoronoi::ClippedVoronoi(const Region& region, double tile)
   I.nx = std::max(1L, static_cast<long>(std::ceil((box.hi.x - box.lo.x) / tile)));
   I.ny = std::max(1L, static_cast<long>(std::ceil((box.hi.y - box.lo.y) / tile)));
   I.tiles.resize(static_cast<std::size_t>(I.nx * I.ny));
-#pragma omp parallel for schedule(dynamic)
-  for (long t = 0; t < I.nx * I.ny; ++t) {
-    // The boxes share their edges: the pieces partition the region.
-    auto edge_x = [&](long k) { return box.lo.x + static_cast<double>(k) * tile; };
-    auto edge_y = [&](long k) { return box.lo.y + static_cast<double>(k) * tile; };
-    const long tx = t % I.nx, ty = t / I.nx;
+  // The boxes share their edges: the pieces partition the region.
+  auto edge_x = [&](long k) { return box.lo.x + static_cast<double>(k) * tile; };
+  auto edge_y = [&](long k) { return box.lo.y + static_cast<double>(k) * tile; };
+  auto clip_tile = [&](std::size_t t) {
+    const long tx = static_cast<long>(t) % I.nx, ty = static_cast<long>(t) / I.nx;
     const BBox b({edge_x(tx), edge_y(ty)}, {edge_x(tx + 1), edge_y(ty + 1)});
     BMulti piece;
     bg::intersection(I.domain, b, piece);
-    I.tiles[static_cast<std::size_t>(t)] = std::move(piece);
-  }
+    I.tiles[t] = std::move(piece);
+  };
+  over_blocks("clip the region to tiles", I.tiles.size(), 1, available_threads(), clip_tile);
 }
 
 ClippedVoronoi::~ClippedVoronoi() = default;
@@ -183,60 +185,51 @@ std::vector<ClippedVoronoi::Cell> ClippedVoronoi::cells(
   }
 
   std::vector<Cell> out(n);
-  std::exception_ptr failed;
-#pragma omp parallel for schedule(dynamic, 64)
-  for (std::size_t i = 0; i < n; ++i) {
-    try {
-      std::vector<Point> poly;
-      const auto* e0 = cell_of[i]->incident_edge();
-      const auto* e = e0;
-      do {
-        if (!e->vertex0()) throw std::logic_error("voronoi: an unbounded cell");
-        poly.push_back(
-            {I.origin.x + e->vertex0()->x() * I.step, I.origin.y + e->vertex0()->y() * I.step});
-        e = e->next();
-      } while (e != e0);
-      const Point g = points[i];
-      double reach = 0.0;
-      for (const Point& q : poly) reach = std::max(reach, norm(q - g));
-      Moments mom;
-      if (I.distance(g) > reach && I.contains(g)) {
-        mom.add_ring(poly, density);  // wholly inside: no clipping
-      } else {
-        BPoly cell;
-        for (const Point& q : poly) cell.outer().push_back({q.x, q.y});
-        cell.outer().push_back({poly.front().x, poly.front().y});
-        bg::correct(cell);
-        Box b = bounding_box(poly);
-        const long tx0 =
-            std::max(0L, static_cast<long>(std::floor((b.lo.x - I.origin.x) / I.tile)));
-        const long ty0 =
-            std::max(0L, static_cast<long>(std::floor((b.lo.y - I.origin.y) / I.tile)));
-        const long tx1 =
-            std::min(I.nx - 1, static_cast<long>(std::floor((b.hi.x - I.origin.x) / I.tile)));
-        const long ty1 =
-            std::min(I.ny - 1, static_cast<long>(std::floor((b.hi.y - I.origin.y) / I.tile)));
-        for (long ty = ty0; ty <= ty1; ++ty) {
-          for (long tx = tx0; tx <= tx1; ++tx) {
-            const BMulti& piece = I.tiles[static_cast<std::size_t>(ty * I.nx + tx)];
-            if (piece.empty()) continue;
-            BMulti clipped;
-            bg::intersection(cell, piece, clipped);
-            for (const BPoly& part : clipped) {
-              mom.add_ring(ring_points(part.outer()), density);
-              for (const auto& inner : part.inners()) mom.add_ring(ring_points(inner), density);
-            }
+  // A cell by the outline is clipped, one inside is not: blocks as threads come free.
+  over_blocks("clip the Voronoi cells", n, 64, available_threads(), [&](std::size_t i) {
+    std::vector<Point> poly;
+    const auto* e0 = cell_of[i]->incident_edge();
+    const auto* e = e0;
+    do {
+      if (!e->vertex0()) throw std::logic_error("voronoi: an unbounded cell");
+      poly.push_back(
+          {I.origin.x + e->vertex0()->x() * I.step, I.origin.y + e->vertex0()->y() * I.step});
+      e = e->next();
+    } while (e != e0);
+    const Point g = points[i];
+    double reach = 0.0;
+    for (const Point& q : poly) reach = std::max(reach, norm(q - g));
+    Moments mom;
+    if (I.distance(g) > reach && I.contains(g)) {
+      mom.add_ring(poly, density);  // wholly inside: no clipping
+    } else {
+      BPoly cell;
+      for (const Point& q : poly) cell.outer().push_back({q.x, q.y});
+      cell.outer().push_back({poly.front().x, poly.front().y});
+      bg::correct(cell);
+      Box b = bounding_box(poly);
+      const long tx0 = std::max(0L, static_cast<long>(std::floor((b.lo.x - I.origin.x) / I.tile)));
+      const long ty0 = std::max(0L, static_cast<long>(std::floor((b.lo.y - I.origin.y) / I.tile)));
+      const long tx1 =
+          std::min(I.nx - 1, static_cast<long>(std::floor((b.hi.x - I.origin.x) / I.tile)));
+      const long ty1 =
+          std::min(I.ny - 1, static_cast<long>(std::floor((b.hi.y - I.origin.y) / I.tile)));
+      for (long ty = ty0; ty <= ty1; ++ty) {
+        for (long tx = tx0; tx <= tx1; ++tx) {
+          const BMulti& piece = I.tiles[static_cast<std::size_t>(ty * I.nx + tx)];
+          if (piece.empty()) continue;
+          BMulti clipped;
+          bg::intersection(cell, piece, clipped);
+          for (const BPoly& part : clipped) {
+            mom.add_ring(ring_points(part.outer()), density);
+            for (const auto& inner : part.inners()) mom.add_ring(ring_points(inner), density);
           }
         }
       }
-      out[i].area = mom.area;
-      out[i].centroid = mom.m > 0.0 ? Point{mom.mx / mom.m, mom.my / mom.m} : g;
-    } catch (...) {
-#pragma omp critical
-      failed = std::current_exception();
     }
-  }
-  if (failed) std::rethrow_exception(failed);
+    out[i].area = mom.area;
+    out[i].centroid = mom.m > 0.0 ? Point{mom.mx / mom.m, mom.my / mom.m} : g;
+  });
   return out;
 }
 

@@ -5,12 +5,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "solver/core/simulation.hpp"
 #include "solver/integrate/step_passes.hpp"
 #include "solver/physics/contact.hpp"
 #include "solver/physics/crack_face_contact.hpp"
 #include "solver/physics/external_loads.hpp"
 #include "solver/physics/momentum.hpp"
+#include "solver/physics/simulation.hpp"
 #include "solver/physics/stress_rate.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 #include "solver/physics/velocity_gradient.hpp"

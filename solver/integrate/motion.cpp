@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "solver/core/row_chunks.hpp"
-#include "solver/core/simulation.hpp"
 #include "solver/physics/external_loads.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::integrate {
 

@@ -7,8 +7,8 @@
 #include "solver/core/passes.hpp"
 #include "solver/core/row_chunks.hpp"
 #include "solver/core/setup_progress.hpp"
-#include "solver/core/simulation.hpp"
 #include "solver/physics/artificial_viscosity.hpp"
+#include "solver/physics/simulation.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 
 namespace gearsph {

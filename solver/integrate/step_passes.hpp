@@ -7,9 +7,9 @@
 #include <span>
 
 #include "solver/core/passes.hpp"
-#include "solver/core/simulation.hpp"
 #include "solver/integrate/motion.hpp"
 #include "solver/physics/contact.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::integrate {
 

@@ -6,13 +6,13 @@
 #include <cstddef>
 
 #include "solver/core/passes.hpp"
-#include "solver/core/simulation.hpp"
 #include "solver/diagnostics/guard.hpp"
 #include "solver/integrate/motion.hpp"
 #include "solver/integrate/step_passes.hpp"
 #include "solver/physics/contact.hpp"
 #include "solver/physics/crack_face_contact.hpp"
 #include "solver/physics/external_loads.hpp"
+#include "solver/physics/simulation.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 
 namespace gearsph::integrate {

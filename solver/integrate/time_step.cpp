@@ -5,8 +5,8 @@
 #include <numbers>
 #include <sstream>
 
-#include "solver/core/simulation.hpp"
 #include "solver/integrate/stability.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph {
 

@@ -1,15 +1,14 @@
 #include "solver/job/job.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
+#include "solver/core/json_schema.hpp"
+#include "solver/core/passes.hpp"
 #include "solver/gear/iso6336_error.hpp"
 #include "solver/gear/iso6336_materials.hpp"
 #include "solver/integrate/integrator.hpp"
-#include "solver/job/json_schema.hpp"
 #include "solver/physics/contact.hpp"
 #include "solver/scene/builders.hpp"
 #include "solver/scene/surfaces.hpp"
@@ -284,7 +283,7 @@ PreparedJob prepare_job(const nlohmann::json& raw, int threads, int max_threads)
            "/method/formulation to \"updated_lagrangian\"");
   }
   const int job_threads = job.at("threads").get<int>();
-  const int most = max_threads > 0 ? max_threads : omp_get_max_threads();
+  const int most = max_threads > 0 ? max_threads : available_threads();
   sim.threads = threads > 0 ? threads : job_threads > 0 ? std::min(job_threads, most) : 1;
   out.threads_by = threads > 0 ? "caller" : job_threads > 0 ? "job" : "size";
   // A scene big enough to take its threads by size without a trial

@@ -6,13 +6,13 @@
 #include <utility>
 
 #include "solver/core/passes.hpp"
-#include "solver/core/simulation.hpp"
 #include "solver/physics/contact_hertz.hpp"
 #include "solver/physics/contact_law.hpp"
 #include "solver/physics/contact_near_field.hpp"
 #include "solver/physics/contact_seed_penalty.hpp"
 #include "solver/physics/contact_smoothing.hpp"
 #include "solver/physics/contact_surface.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph {
 

@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "solver/core/passes.hpp"
-#include "solver/core/simulation.hpp"
 #include "solver/physics/contact.hpp"
 #include "solver/physics/contact_hertz.hpp"
 #include "solver/physics/contact_law.hpp"
@@ -13,6 +12,7 @@
 #include "solver/physics/contact_seed_penalty.hpp"
 #include "solver/physics/contact_smoothing.hpp"
 #include "solver/physics/contact_surface.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::physics {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "solver/core/simulation.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::physics {
 

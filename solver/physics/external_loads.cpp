@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <type_traits>
 
-#include "solver/core/simulation.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::physics {
 

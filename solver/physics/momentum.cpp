@@ -3,10 +3,10 @@
 #include <cmath>
 
 #include "solver/core/passes.hpp"
-#include "solver/core/simulation.hpp"
 #include "solver/physics/artificial_stress.hpp"
 #include "solver/physics/artificial_viscosity.hpp"
 #include "solver/physics/hourglass.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::physics {
 

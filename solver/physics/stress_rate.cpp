@@ -1,9 +1,9 @@
 #include "solver/physics/stress_rate.hpp"
 
 #include "solver/core/passes.hpp"
-#include "solver/core/simulation.hpp"
 #include "solver/physics/artificial_stress.hpp"
 #include "solver/physics/elastic_law.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::physics {
 

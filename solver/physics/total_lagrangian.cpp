@@ -8,11 +8,11 @@
 #include <stdexcept>
 
 #include "solver/core/passes.hpp"
-#include "solver/core/simulation.hpp"
 #include "solver/physics/artificial_viscosity.hpp"
 #include "solver/physics/contact.hpp"
 #include "solver/physics/elastic_law.hpp"
 #include "solver/physics/hourglass.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::physics {
 

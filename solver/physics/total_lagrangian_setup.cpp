@@ -5,10 +5,10 @@
 #include <type_traits>
 
 #include "solver/core/setup_progress.hpp"
-#include "solver/core/simulation.hpp"
 #include "solver/physics/artificial_viscosity.hpp"
 #include "solver/physics/crack_cut.hpp"
 #include "solver/physics/kernel_correction.hpp"
+#include "solver/physics/simulation.hpp"
 #include "solver/physics/total_lagrangian.hpp"
 
 namespace gearsph::physics {

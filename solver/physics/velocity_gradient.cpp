@@ -3,9 +3,9 @@
 #include <cmath>
 
 #include "solver/core/passes.hpp"
-#include "solver/core/simulation.hpp"
 #include "solver/physics/continuity.hpp"
 #include "solver/physics/kernel_correction.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::physics {
 

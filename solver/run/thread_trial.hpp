@@ -18,7 +18,7 @@
 // lists the switches.
 #include <vector>
 
-#include "solver/core/simulation.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph {
 

@@ -18,9 +18,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "solver/core/simulation.hpp"
 #include "solver/diagnostics/stress_intensity.hpp"
 #include "solver/geometry/crack.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::scenes {
 

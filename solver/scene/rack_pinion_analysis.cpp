@@ -8,9 +8,9 @@
 #include <cstdio>
 #include <numbers>
 
-#include "solver/core/simulation.hpp"
 #include "solver/diagnostics/hertz_fit.hpp"
 #include "solver/gear/iso6336_simulated.hpp"
+#include "solver/physics/simulation.hpp"
 #include "solver/scene/rack_pinion.hpp"
 
 namespace gearsph::scenes {

@@ -6,8 +6,8 @@
 #include <numbers>
 #include <string>
 
-#include "solver/core/simulation.hpp"
 #include "solver/physics/contact_near_field.hpp"
+#include "solver/physics/simulation.hpp"
 #include "solver/scene/rack_pinion.hpp"
 #include "solver/scene/scene.hpp"
 

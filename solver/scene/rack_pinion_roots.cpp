@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "solver/core/simulation.hpp"
 #include "solver/diagnostics/edge_stress.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::scenes {
 

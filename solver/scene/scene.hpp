@@ -11,8 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "solver/core/simulation.hpp"
 #include "solver/diagnostics/history.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph {
 
@@ -61,6 +61,11 @@ struct Scene {
   // set-up builds the pairs again on the same particles, displaced as they
   // are) and returns how long to run on [s]; 0 ends the run.
   std::function<double(Simulation&)> next_stage;
+  // Ends the run before its last step once it holds what it was run for (a
+  // loaded dynamic rack_pinion run's steady mesh: /scene/steady_mesh_periods,
+  // docs/dynamics.md). Asked after each history sample; a sentence for the
+  // summary's `ended_early`, or empty to go on.
+  std::function<std::string(const History&)> ends_early;
 };
 
 // A job that is valid against the schema but cannot be built as asked

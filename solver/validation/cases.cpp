@@ -357,15 +357,8 @@ json lame_job() {
   return {{"name", "lame"}, {"scene", {{"type", "thick_cylinder"}}}};
 }
 
-}  // namespace
-
-json rating_summary(const json& document) {
-  return {{"status", "completed"},
-          {"analysis", {{"rating", gear::iso6336::rate_document(document)}}}};
-}
-
-std::vector<Case> cases(bool quick) {
-  std::vector<Case> out;
+// Waves, vibration and rigid rotation: the elastic terms on their own.
+void add_elastic_wave_cases(std::vector<Case>& out, bool quick) {
   for (const char* k : kKernels) {
     out.push_back({std::string("plate_period/") + k, "5", "period [s]",
                    "thin plate, omega^2 = E H^2 k^4 / (12 rho (1 - nu^2))", 0.05, plate_job(k),
@@ -406,6 +399,10 @@ std::vector<Case> cases(bool quick) {
                  "centrifugal stress scale; particles 4x finer at the centre", 0.5,
                  graded(disk_job("seed_quartic", false, quick)),
                  bounded("max_von_mises_Pa", "centrifugal_scale_Pa"), Case::Kind::Bound});
+}
+
+// Contact between bodies: impact of bars and Hertz's cylinder on a half-plane.
+void add_contact_cases(std::vector<Case>& out, bool quick) {
   out.push_back({"bar_impact/contact_stress", "3", "contact stress [Pa]", "sigma = rho c v", 0.05,
                  bar_job(false, quick),
                  relative("contact_stress_Pa", "reference_contact_stress_Pa")});
@@ -441,49 +438,10 @@ std::vector<Case> cases(bool quick) {
   out.push_back({"hertz_graded/half_width", "6", "contact half-width a [m]",
                  "a = sqrt(4 P' R / (pi E*))", 0.10, hertz_graded_job(quick),
                  relative("half_width_m", "reference_half_width_m")});
-  // Nominal bending stress of tooth 0's critical section (6 M / s_Fn^2),
-  // against ISO's form factor for the load where it acts.
-  out.push_back(
-      {"gear_static/root_bending_iso", "7", "nominal root bending stress [Pa]",
-       "ISO 6336-3 Ft / (b m) Y_F, Y_F where the load acts", 0.20, gear_static_job(),
-       relative("static_check/nominal_bending_stress_Pa", "static_check/iso_nominal_Pa")});
-  out.push_back({"gear_static/root_bending_lewis", "7", "nominal root bending stress [Pa]",
-                 "Lewis Ft / (b m Y), Y = 0.245 (z = 12), load at the tip", 0.40, gear_static_job(),
-                 relative("static_check/nominal_bending_stress_Pa", "static_check/lewis_Pa"),
-                 Case::Kind::Relative,
-                 "Lewis's Y assumes the load at the tip; the static check loads the pitch point "
-                 "(r = 24 mm), where ISO's Y_F is 0.6 of its tip value"});
-  // The elastic pair the particles model is ISO's theoretical stiffness
-  // c'_th: a finite-element model of the same pinion and rack tooth gives
-  // 13.6 N/(mm um) at the pitch point, c'_th within 1 % (docs/fe-check.md).
-  // ISO's c' is 0.8 c'_th (C_M), the measured gears' extra compliance that
-  // the model has no source for; it is reported beside it.
-  out.push_back({"gear_static/mesh_stiffness", "7", "single-pair mesh stiffness [N/(mm um)]",
-                 "ISO 6336-1 c'_th (method B, before C_M = 0.8)", 0.15, gear_static_job(),
-                 relative("static_check/mesh_stiffness_N_per_mm_um",
-                          "static_check/iso_theoretical_mesh_stiffness_N_per_mm_um")});
-  out.push_back(
-      {"gear_static/mesh_stiffness_iso_measured", "7", "single-pair mesh stiffness [N/(mm um)]",
-       "ISO 6336-1 c' = 0.8 c'_th", 0.15, gear_static_job(),
-       relative("static_check/mesh_stiffness_N_per_mm_um",
-                "static_check/iso_mesh_stiffness_N_per_mm_um"),
-       Case::Kind::Relative,
-       "c' carries ISO's C_M = 0.8 for measured solid gears (shafts, bearings, deviations), "
-       "none of which the elastic pair has; the finite-element pair matches c'_th"});
-  // ISO 6336-2's sigma_H0 is the Hertz pressure at the pitch point: the
-  // sub-model on the resolved tooth force and the measured flank curvature
-  // must give it where the load sits there.
-  out.push_back(
-      {"gear_static/contact_pressure_pitch", "7", "Hertz peak pressure at the pitch point [Pa]",
-       "ISO 6336-2 sigma_H0 = Z_H Z_E sqrt(Ft / (d b)), one pair", 0.02, gear_fillet_job("pitch"),
-       relative("static_check/hertz_peak_pressure_Pa", "static_check/iso_sigma_H0_Pa")});
-  // The same pressure read from particles that resolve the contact.
-  out.push_back(
-      {"gear_static/resolved_contact_pressure", "7",
-       "peak contact pressure read from the particles [Pa]",
-       "Hertz p0 on tooth 0's force and flank curvature (the sub-model above)", 0.10,
-       gear_resolved_contact_job(quick),
-       relative("static_check/resolved_peak_pressure_Pa", "static_check/hertz_peak_pressure_Pa")});
+}
+
+// Stress at curved free boundaries: Kirsch's hole and Lame's ring.
+void add_stress_concentration_cases(std::vector<Case>& out, bool quick) {
   // Stress at a curved free boundary, recovered on the true outline
   // (validation.md section 10).
   out.push_back({"kirsch/peak_hoop_stress", "10", "peak hoop stress at the hole [Pa]",
@@ -512,19 +470,10 @@ std::vector<Case> cases(bool quick) {
                  "Lame, plane strain: (1 + nu) p a^2 / (E (b^2 - a^2)) [(1 - 2 nu) a + b^2 / a]",
                  0.02, lame_job(),
                  relative("bore_displacement_m", "reference_bore_displacement_m")});
-  // Linear where the physics is: the fillet peak per unit load at the final
-  // load against that at half of it (static_check.linearity), 7 kN.
-  for (const char* point : {"hpstc", "tip"}) {
-    json job = gear_fillet_job(point);
-    job["scene"]["rack"]["load_N"] = 7000.0;
-    job["output"] = {{"frames", 0}};
-    out.push_back(
-        {std::string("gear_static/fillet_linearity_") + point, "7",
-         "tension fillet peak per unit tooth-0 force at 7 kN [Pa/N]",
-         "the same at half the load (linear elasticity, load at a fixed point)", 0.01, job,
-         relative("static_check/linearity/fillet_tension_peak_per_N_at_final_load_Pa_per_N",
-                  "static_check/linearity/fillet_tension_peak_per_N_at_half_load_Pa_per_N")});
-  }
+}
+
+// Cracks: stress intensity factors in a plate and the outcome of a root crack in a gear.
+void add_crack_cases(std::vector<Case>& out, bool quick) {
   // Stress intensity factors of a crack cut in the particles, by the
   // interaction integral (docs/cracks.md), at the tolerances (K_I
   // 3 %, K_II 5 %). The error falls at first order with the spacing (the
@@ -570,6 +519,66 @@ std::vector<Case> cases(bool quick) {
                    lewicki_crack_job(ratio), text_outcome("crack/outcome", expected),
                    Case::Kind::Outcome, disagreement});
   }
+}
+
+// The gear against ISO 6336: root bending, mesh stiffness, contact pressure, the fillet.
+void add_gear_cases(std::vector<Case>& out, bool quick) {
+  // Nominal bending stress of tooth 0's critical section (6 M / s_Fn^2),
+  // against ISO's form factor for the load where it acts.
+  out.push_back(
+      {"gear_static/root_bending_iso", "7", "nominal root bending stress [Pa]",
+       "ISO 6336-3 Ft / (b m) Y_F, Y_F where the load acts", 0.20, gear_static_job(),
+       relative("static_check/nominal_bending_stress_Pa", "static_check/iso_nominal_Pa")});
+  out.push_back({"gear_static/root_bending_lewis", "7", "nominal root bending stress [Pa]",
+                 "Lewis Ft / (b m Y), Y = 0.245 (z = 12), load at the tip", 0.40, gear_static_job(),
+                 relative("static_check/nominal_bending_stress_Pa", "static_check/lewis_Pa"),
+                 Case::Kind::Relative,
+                 "Lewis's Y assumes the load at the tip; the static check loads the pitch point "
+                 "(r = 24 mm), where ISO's Y_F is 0.6 of its tip value"});
+  // The elastic pair the particles model is ISO's theoretical stiffness
+  // c'_th: a finite-element model of the same pinion and rack tooth gives
+  // 13.6 N/(mm um) at the pitch point, c'_th within 1 % (docs/fe-check.md).
+  // ISO's c' is 0.8 c'_th (C_M), the measured gears' extra compliance that
+  // the model has no source for; it is reported beside it.
+  out.push_back({"gear_static/mesh_stiffness", "7", "single-pair mesh stiffness [N/(mm um)]",
+                 "ISO 6336-1 c'_th (method B, before C_M = 0.8)", 0.15, gear_static_job(),
+                 relative("static_check/mesh_stiffness_N_per_mm_um",
+                          "static_check/iso_theoretical_mesh_stiffness_N_per_mm_um")});
+  out.push_back(
+      {"gear_static/mesh_stiffness_iso_measured", "7", "single-pair mesh stiffness [N/(mm um)]",
+       "ISO 6336-1 c' = 0.8 c'_th", 0.15, gear_static_job(),
+       relative("static_check/mesh_stiffness_N_per_mm_um",
+                "static_check/iso_mesh_stiffness_N_per_mm_um"),
+       Case::Kind::Relative,
+       "c' carries ISO's C_M = 0.8 for measured solid gears (shafts, bearings, deviations), "
+       "none of which the elastic pair has; the finite-element pair matches c'_th"});
+  // ISO 6336-2's sigma_H0 is the Hertz pressure at the pitch point: the
+  // sub-model on the resolved tooth force and the measured flank curvature
+  // must give it where the load sits there.
+  out.push_back(
+      {"gear_static/contact_pressure_pitch", "7", "Hertz peak pressure at the pitch point [Pa]",
+       "ISO 6336-2 sigma_H0 = Z_H Z_E sqrt(Ft / (d b)), one pair", 0.02, gear_fillet_job("pitch"),
+       relative("static_check/hertz_peak_pressure_Pa", "static_check/iso_sigma_H0_Pa")});
+  // The same pressure read from particles that resolve the contact.
+  out.push_back(
+      {"gear_static/resolved_contact_pressure", "7",
+       "peak contact pressure read from the particles [Pa]",
+       "Hertz p0 on tooth 0's force and flank curvature (the sub-model above)", 0.10,
+       gear_resolved_contact_job(quick),
+       relative("static_check/resolved_peak_pressure_Pa", "static_check/hertz_peak_pressure_Pa")});
+  // Linear where the physics is: the fillet peak per unit load at the final
+  // load against that at half of it (static_check.linearity), 7 kN.
+  for (const char* point : {"hpstc", "tip"}) {
+    json job = gear_fillet_job(point);
+    job["scene"]["rack"]["load_N"] = 7000.0;
+    job["output"] = {{"frames", 0}};
+    out.push_back(
+        {std::string("gear_static/fillet_linearity_") + point, "7",
+         "tension fillet peak per unit tooth-0 force at 7 kN [Pa/N]",
+         "the same at half the load (linear elasticity, load at a fixed point)", 0.01, job,
+         relative("static_check/linearity/fillet_tension_peak_per_N_at_final_load_Pa_per_N",
+                  "static_check/linearity/fillet_tension_peak_per_N_at_half_load_Pa_per_N")});
+  }
   // The gear's fillet, tooth 0 loaded alone, against ISO 6336-3 method B
   // at the same load radius (its formulas' own accuracy, about 15 %).
   for (const char* point : {"pitch", "hpstc", "tip"}) {
@@ -579,6 +588,22 @@ std::vector<Case> cases(bool quick) {
          gear_fillet_job(point),
          relative("static_check/fillet_tension_peak_Pa", "static_check/iso_sigma_F0_Pa")});
   }
+}
+
+}  // namespace
+
+json rating_summary(const json& document) {
+  return {{"status", "completed"},
+          {"analysis", {{"rating", gear::iso6336::rate_document(document)}}}};
+}
+
+std::vector<Case> cases(bool quick) {
+  std::vector<Case> out;
+  add_elastic_wave_cases(out, quick);
+  add_contact_cases(out, quick);
+  add_stress_concentration_cases(out, quick);
+  add_gear_cases(out, quick);
+  add_crack_cases(out, quick);
   add_rating_cases(out);
   return out;
 }

@@ -2,7 +2,7 @@
 // A free square block of n x n steel particles, 1 mm apart, at rest and
 // unconstrained: the scene of the pair-loop tests, which then add their own
 // random velocities and position jiggle.
-#include "solver/core/simulation.hpp"
+#include "solver/physics/simulation.hpp"
 
 namespace gearsph::testing_support {
 

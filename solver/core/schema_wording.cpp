@@ -1,4 +1,4 @@
-#include "solver/job/schema_wording.hpp"
+#include "solver/core/schema_wording.hpp"
 
 #include <algorithm>
 #include <cctype>

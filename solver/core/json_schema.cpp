@@ -11,7 +11,7 @@
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #pragma GCC diagnostic ignored "-Wrestrict"
-#include "solver/job/json_schema.hpp"
+#include "solver/core/json_schema.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -30,7 +30,7 @@
 #include <valijson/validator.hpp>
 #pragma GCC diagnostic pop
 
-#include "solver/job/schema_wording.hpp"
+#include "solver/core/schema_wording.hpp"
 
 namespace gearsph::jsonschema {
 namespace {
