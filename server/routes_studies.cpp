@@ -10,6 +10,7 @@
 
 #include "server/problem.hpp"
 #include "server/routes.hpp"
+#include "server/speed_sweep_study.hpp"
 #include "server/study.hpp"
 #include "server/submission.hpp"
 
@@ -46,6 +47,23 @@ std::string aggregate_status(const std::map<std::string, std::int64_t>& counts,
   if (n("successful") == total) return "successful";
   if (n("dismissed") == total) return "dismissed";
   return "failed";
+}
+
+// A finished speed sweep's report (speed_sweep_study.hpp): each speed's
+// summary in the plan's order, null for a job that did not succeed.
+nlohmann::json sweep_of(Services& s, const nlohmann::json& spec, const JobPage& page) {
+  const nlohmann::json& plan = spec["plan"];
+  std::vector<nlohmann::json> summaries(plan.at("jobs").size());
+  for (const JobRecord& j : page.jobs) {
+    const auto k = static_cast<std::size_t>(j.study_index);
+    if (j.status != JobStatus::successful || k >= summaries.size()) continue;
+    if (auto summary = read_summary(s.job_dir(j) / "summary.json")) summaries[k] = *summary;
+  }
+  try {
+    return speed_sweep_report(plan, summaries);
+  } catch (const std::exception& e) {
+    return {{"error", std::string("the sweep's report could not be made: ") + e.what()}};
+  }
 }
 
 struct StudyView {
@@ -86,6 +104,7 @@ StudyView view_study(Services& s, const StudyRecord& study) {
       {"status", status},
       {"progress", total > 0 ? static_cast<int>(progress / double(total)) : 0},
       {"counts", counts},
+      {"kind", is_speed_sweep(spec) ? "speed_sweep" : "axes"},
       {"axes", spec.is_object() && spec.contains("axes") ? spec["axes"] : nlohmann::json()},
       {"jobs", jobs}};
   const std::string self = "/studies/" + study.id;
@@ -117,6 +136,8 @@ StudyView view_study(Services& s, const StudyRecord& study) {
     v.table = study_table(rows);
     v.document["table"] = v.table->rows;
     v.document["columns"] = v.table->columns;
+    if (spec.is_object() && spec.contains("plan"))
+      v.document["speed_sweep"] = sweep_of(s, spec, page);
     links.push_back(link(self + "?format=csv", "alternate", "text/csv", "the table as CSV"));
   }
   v.document["links"] = links;
@@ -138,9 +159,18 @@ Response create_study(Services& s, Request& req) {
 
   StudySpec spec;
   std::vector<StudyPoint> points;
+  nlohmann::json stored = request;
+  const bool sweep = is_speed_sweep(request);
   try {
-    spec = parse_study(request, s.config.limits.max_study_jobs);
-    points = expand_study(spec);
+    if (sweep) {
+      SpeedSweepStudy planned = plan_speed_sweep_study(request, s.config.limits);
+      spec.name = planned.name;
+      points = std::move(planned.points);
+      stored["plan"] = std::move(planned.plan);
+    } else {
+      spec = parse_study(request, s.config.limits.max_study_jobs);
+      points = expand_study(spec);
+    }
   } catch (const InvalidJob& e) {
     return refusal_response(
         Refusal{http::status::bad_request, problem::kInvalidJob, "Invalid study", e.issues}, req);
@@ -155,11 +185,11 @@ Response create_study(Services& s, Request& req) {
                : spec.base.contains("name") && spec.base["name"].is_string()
                    ? spec.base["name"].get<std::string>()
                    : "study";
-  study.spec_json = request.dump();
+  study.spec_json = stored.dump();
 
   for (std::size_t i = 0; i < points.size(); ++i) {
     StudyPoint& point = points[i];
-    if (!point.parameters.contains("/name")) {
+    if (!sweep && !point.parameters.contains("/name")) {
       const std::string suffix = "-" + std::to_string(i + 1);
       point.job["name"] = study.name.substr(0, kMaxJobName - suffix.size()) + suffix;
     }
@@ -199,6 +229,13 @@ Response create_study(Services& s, Request& req) {
       // Point each issue at the axis value that caused it, else into the base.
       Refusal r = *refusal;
       for (JobIssue& issue : r.issues) {
+        if (sweep) {
+          // The sweep made the job: the speed is what the request chose.
+          issue.message =
+              "the job at this speed is refused at " + issue.pointer + ": " + issue.message;
+          issue.pointer = "/speed_sweep/ratios/" + std::to_string(i);
+          continue;
+        }
         bool mapped = false;
         for (std::size_t k = 0; k < spec.axes.size() && !mapped; ++k) {
           if (under(issue.pointer, spec.axes[k].pointer)) {

@@ -666,6 +666,79 @@ TEST(ServerStudies, SweepExpandsRunsAndTabulates) {
   EXPECT_EQ(c.post_json("/studies", too_many.dump()).status, 400u);
 }
 
+// A speed sweep as a study (docs/dynamics.md): planned as the CLI plans it,
+// one job per ratio, each ending on its steady mesh; refused at pointers
+// into the request before any job is stored; and once no job is left to
+// run, the study's document carries the sweep's report (here with the jobs
+// dismissed before any ran: the lumped model's curve, no SPH values). An
+// API without workers keeps the jobs queued until then.
+TEST(ServerStudies, ASpeedSweepIsPlannedRefusedAndReported) {
+  ServerProcess server({"--no-local-workers"});
+  auto c = server.client();
+  const json job = {{"name", "pair"},
+                    {"scene",
+                     {{"type", "rack_pinion"},
+                      {"pinion", {{"omega_rad_s", -15.0}}},
+                      {"rack", {{"velocity_m_s", -0.36}, {"load_N", 5000.0}}}}},
+                    {"discretization", {{"particles", "lattice"}, {"spacing_mm", 2.0}}}};
+  const json sweep = {
+      {"name", "paper-pair"},
+      {"speed_sweep", {{"job", job}, {"ratios", {0.5, 1.5}}, {"steady_periods", 2}}}};
+  auto refused_at = [&](const json& body) {
+    const ClientResponse r = c.post_json("/studies", body.dump());
+    EXPECT_EQ(r.status, 400u) << r.body;
+    std::vector<std::string> pointers;
+    const json problem = r.json();
+    for (const json& e : problem.at("errors")) pointers.push_back(e.at("pointer"));
+    return pointers;
+  };
+  json bad = sweep;
+  bad["speed_sweep"]["ratios"] = {0.5, -1.0};
+  EXPECT_EQ(refused_at(bad), std::vector<std::string>{"/speed_sweep/ratios/1"});
+  bad = sweep;
+  bad["speed_sweep"]["job"]["scene"]["quasi_static"] = true;
+  EXPECT_EQ(refused_at(bad), std::vector<std::string>{"/speed_sweep/job/scene/quasi_static"});
+  bad = sweep;
+  bad["speed_sweep"]["job"]["scene"]["rack"]["load_N"] = 0.0;
+  EXPECT_EQ(refused_at(bad), std::vector<std::string>{"/speed_sweep/job/scene/rack/load_N"});
+  bad = sweep;
+  bad["speed_sweep"]["stiffness"] = "measured";
+  EXPECT_EQ(refused_at(bad), std::vector<std::string>{"/speed_sweep/stiffness"});
+  bad = sweep;
+  bad["axes"] = json::array();
+  EXPECT_EQ(refused_at(bad), std::vector<std::string>{"/axes"});
+  EXPECT_EQ(c.get("/jobs").json().at("jobs").size(), 0u);  // nothing was stored
+
+  const ClientResponse r = c.post_json("/studies", sweep.dump());
+  ASSERT_EQ(r.status, 201u) << r.body;
+  const json doc = r.json();
+  EXPECT_EQ(doc.at("kind"), "speed_sweep");
+  EXPECT_EQ(doc.at("name"), "paper-pair");
+  ASSERT_EQ(doc.at("jobs").size(), 2u);
+  std::vector<double> f_mesh;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const json& j = doc.at("jobs").at(k);
+    EXPECT_EQ(j.at("parameters").at("ratio"), sweep["speed_sweep"]["ratios"][k]);
+    f_mesh.push_back(j.at("parameters").at("mesh_frequency_Hz").get<double>());
+  }
+  EXPECT_NEAR(f_mesh[1] / f_mesh[0], 3.0, 1e-9);
+  EXPECT_FALSE(doc.contains("speed_sweep"));  // not before the jobs are over
+
+  for (const json& j : doc.at("jobs")) {
+    EXPECT_EQ(c.request("DELETE", "/jobs/" + j.at("jobID").get<std::string>()).status, 200u);
+  }
+  const json done = c.get("/studies/" + doc.at("studyID").get<std::string>()).json();
+  ASSERT_TRUE(done.contains("speed_sweep")) << done.dump();
+  const json& report = done.at("speed_sweep");
+  ASSERT_FALSE(report.contains("error")) << report.dump();
+  ASSERT_EQ(report.at("mesh_frequency_Hz").size(), 2u);
+  EXPECT_NEAR(report.at("mesh_frequency_Hz").at(0).get<double>(), f_mesh[0], 1e-9 * f_mesh[0]);
+  EXPECT_TRUE(report.at("K_v_sph").at(0).is_null());  // no job ran
+  EXPECT_GT(report.at("K_v_sdof").at(0).get<double>(), 1.0);
+  EXPECT_GT(report.at("natural_frequency_Hz_sdof").get<double>(), 0.0);
+  EXPECT_EQ(report.at("stiffness_from"), "iso");
+}
+
 TEST(ServerSubmit, CliSubmitsWaitsAndDownloads) {
   ServerProcess server({"--threads-per-job", "1"});
   const fs::path job = server.dir() / "job.json";

@@ -1,13 +1,17 @@
 // The speed sweep's request and plan (solver/study/speed_sweep.hpp) and the
 // masses the lumped model takes from the scene: refusals at their JSON
 // pointers before any job runs, the speeds' jobs at the ratios asked for,
+// the plan kept as a document, the steady mesh that ends each speed's run,
 // and rack.attached_mass_kg on the rack's guided back.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "solver/job/job.hpp"
+#include "solver/scene/rack_pinion.hpp"
 #include "solver/study/speed_sweep.hpp"
 
 namespace gearsph::study {
@@ -82,6 +86,8 @@ TEST(SpeedSweep, PlansEachSpeedAtItsRatioAndRefusesJobsOverTheLimits) {
     EXPECT_LT(omega, 0.0);  // the job's sense of rotation
     EXPECT_NEAR(s.at("rack").at("velocity_m_s").get<double>(), omega * 0.024, 1e-12);
     EXPECT_EQ(s.at("pinion").at("modelled_teeth"), "all");
+    // Each speed ends once its mesh has been steady for the periods asked.
+    EXPECT_EQ(s.at("steady_mesh_periods"), 2);
   }
   // Every speed models the same rack: the same masses, one natural frequency.
   EXPECT_EQ(plan.jobs[0]["scene"]["rack"]["modelled_teeth"],
@@ -96,6 +102,59 @@ TEST(SpeedSweep, PlansEachSpeedAtItsRatioAndRefusesJobsOverTheLimits) {
     EXPECT_EQ(e.issues[0].pointer, "/ratios/0");
     EXPECT_EQ(e.issues[1].pointer, "/ratios/1");
   }
+}
+
+// A service keeps the plan as a document and reports from it once the
+// jobs have run: the plan read back reports exactly as the plan itself, on
+// the same summaries (here one speed with a K_v, one that did not run).
+TEST(SpeedSweep, APlanReadBackFromItsDocumentReportsAsThePlan) {
+  const SpeedSweepRequest req =
+      read_speed_sweep({{"job", loaded_job()}, {"ratios", {0.5, 1.0}}, {"steady_periods", 2}});
+  const SpeedSweepPlan plan = plan_speed_sweep(req, SweepLimits{});
+  const json document = plan_document(plan);
+  const SpeedSweepPlan back = plan_from_document(json::parse(document.dump()));
+  EXPECT_EQ(plan_document(back), document);
+  const std::vector<json> summaries = {
+      {{"analysis",
+        {{"dynamics",
+          {{"K_v", 1.21}, {"dte_pp_m", 3e-6}, {"steady", true}, {"ringing", json::object()}}}}}},
+      nullptr};
+  const json report = sweep_report(back, summaries, 0.05);
+  EXPECT_EQ(report, sweep_report(plan, summaries, 0.05));
+  EXPECT_EQ(report.at("K_v_sph").at(0), 1.21);
+  EXPECT_TRUE(report.at("K_v_sph").at(1).is_null());
+  EXPECT_EQ(report.at("mesh_frequency_Hz").size(), 2u);
+}
+
+// A loaded dynamic run ends once its mesh has been steady for the periods
+// asked for (scenes::end_on_steady_mesh). On the synthetic start of
+// test_steady_mesh.cpp (a ringing decaying with tau = 20 ms on a 100 Hz
+// mesh force, steady from 0.05-0.08 s by the detector), ten periods and
+// the detector's three of reference put the end 0.13 s later, within the
+// one mesh period between its checks.
+TEST(SpeedSweep, ARunEndsOnceItsMeshHasBeenSteadyForThePeriodsAskedFor) {
+  scenes::GearLayout layout;
+  layout.teeth = 12;
+  layout.omega = -2.0 * std::numbers::pi * 100.0 / 12.0;  // a 100 Hz mesh
+  auto ends = scenes::end_on_steady_mesh(layout, 10);
+  History h({"time_s", "contact_force_N"});
+  const double F0 = 1000.0, tau = 0.02, rate = 2e4;
+  double ended_at = -1.0;
+  std::string why;
+  for (int k = 0; k <= static_cast<int>(0.5 * rate); ++k) {
+    const double t = k / rate, w = 2.0 * std::numbers::pi;
+    h.add_row({t, F0 * (1.0 + 0.3 * std::cos(w * 100.0 * t)) +
+                      2.0 * F0 * std::exp(-t / tau) * std::cos(w * 730.0 * t)});
+    why = ends(h);
+    if (!why.empty()) {
+      ended_at = t;
+      break;
+    }
+  }
+  ASSERT_GT(ended_at, 0.0) << "the run never ended";
+  EXPECT_GE(ended_at, 0.05 + 0.13 - 1e-9);
+  EXPECT_LE(ended_at, 0.0801 + 0.13 + 0.0101);
+  EXPECT_NE(why.find("steady"), std::string::npos) << why;
 }
 
 // The lumped model's mass: the rack's, with what is attached, over

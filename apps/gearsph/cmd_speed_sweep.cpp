@@ -151,13 +151,10 @@ int cmd_speed_sweep(Args& args) {
   for (std::size_t k = 0; k < plan.jobs.size() && !lumped_only; ++k) {
     const fs::path dir = fs::path(out) / "runs" / ("speed_" + std::to_string(k));
     PreparedJob job = prepare_job(plan.jobs[k], threads);
-    study::SteadyMeshStop stop(plan.mesh_frequency_Hz[k], plan.request.steady_periods);
     ExecuteOptions opt;
     opt.threads = threads;
-    opt.observer = &stop;
     const Execution ex = execute_prepared(job, dir, opt);
     summaries[k] = json::parse(read_file((dir / "summary.json").string()));
-    summaries[k]["stopped_on_steady_mesh"] = stop.stopped_steady();
     const json& d = summaries[k]["analysis"].value("dynamics", json::object());
     std::printf("ratio %.3g: f_mesh %.1f Hz, K_v %.4g, steady %s, %.3g s simulated, %.0f s wall\n",
                 plan.request.ratios[k], plan.mesh_frequency_Hz[k], d.value("K_v", 0.0),

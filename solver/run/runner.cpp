@@ -135,11 +135,15 @@ RunResult run_job(PreparedJob& job, RunObserver* observer) {
         health.check(sim, e, full);
         if (full) last_health = s;
         if (observer) observer->on_sample(sim, result.history);
+        if (scene.ends_early) result.ended_early = scene.ends_early(result.history);
       }
-      if (observer && job.snapshot_every > 0 && (s % job.snapshot_every == 0 || s == last)) {
+      const bool ending = !result.ended_early.empty();
+      if (observer && job.snapshot_every > 0 &&
+          (s % job.snapshot_every == 0 || s == last || ending)) {
         observer->on_snapshot(sim, frame++);
       }
       result.steps_done = s;
+      if (ending) break;
       if (s == last && scene.next_stage) {
         const double before = diagnostics::energy(sim).total();
         const double more_s = scene.next_stage(sim);
@@ -184,6 +188,7 @@ RunResult run_job(PreparedJob& job, RunObserver* observer) {
   }
   result.summary = make_summary(job, result, peak);
   result.summary["threads_by"] = job.threads_by;
+  if (!result.ended_early.empty()) result.summary["ended_early"] = result.ended_early;
   if (!trial.threads.empty()) {
     result.summary["thread_trial"] = {{"threads", trial.threads},
                                       {"us_per_step", trial.us_per_step},

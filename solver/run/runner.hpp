@@ -32,6 +32,7 @@ struct RunResult {
   std::string status = "completed";  // completed | cancelled | diverged
   std::string message;
   std::int64_t steps_done = 0;
+  std::string ended_early;  // why the run ended before its last step (Scene::ends_early)
   double wall_s = 0.0;
   History history;
   nlohmann::json summary;

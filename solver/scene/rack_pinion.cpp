@@ -1035,6 +1035,15 @@ Scene build_rack_pinion(const SceneInput& in) {
   sim.domain =
       grown_bounds(sim.particles, 4.0 * L.tip_radius + std::abs(L.rack_velocity) * L.end_s);
   const double omega_mesh = set_mesh_dynamics(scene, L, pinion, mat_p, mat_r);
+  if (s.contains("steady_mesh_periods")) {
+    if (L.quasi_static || !(L.load_N > 0.0 || L.torque_Nm)) {
+      throw JobError("/scene/steady_mesh_periods",
+                     "ends a loaded dynamic run once its mesh is steady; this run is " +
+                         std::string(L.quasi_static ? "quasi-static" : "not loaded") +
+                         ": leave it out, or give the rack a load_N or the pinion a torque_N_m");
+    }
+    scene.ends_early = end_on_steady_mesh(L, s.at("steady_mesh_periods").get<int>());
+  }
   if (L.load_N > 0.0) {
     // ISO 6336-1's K_v beside the lumped model, where method B applies: a
     // pair of contact ratio 1 or below is still a mesh to simulate (the

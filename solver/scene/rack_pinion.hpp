@@ -145,6 +145,13 @@ std::string static_check_teeth_reason(const nlohmann::json& pinion);
 // lumped model of the same pair at the run's speed beside ISO 6336-1.
 nlohmann::json analyse_mesh_dynamics(const GearLayout& layout, const History& h);
 
+// Scene::ends_early of a loaded dynamic run that asks for `periods` mesh
+// periods of steady mesh: it reads the mesh as analyse_mesh_dynamics does,
+// once a mesh period, and ends the run once the steady window holds them
+// beside the detector's reference periods.
+std::function<std::string(const History&)> end_on_steady_mesh(const GearLayout& layout,
+                                                              int periods);
+
 // The lumped model of the pair as the scene models it (masses with what is
 // attached, a held pinion as infinitely heavy, the play along the line of
 // action, the load along it), with a single-pair stiffness k_single [N/m

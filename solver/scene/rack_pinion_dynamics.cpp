@@ -4,6 +4,7 @@
 // pair (gear/mesh_dynamics_sdof.hpp) at the run's speed, with ISO 6336-1's
 // resonance beside it.
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 
@@ -116,6 +117,32 @@ nlohmann::json describe_lumped_model(const GearLayout& L) {
     out["iso6336_1_method_b"] = {{"status", "not_applicable"}, {"reason", L.iso_dynamics_note}};
   }
   return out;
+}
+
+std::function<std::string(const History&)> end_on_steady_mesh(const GearLayout& L, int periods) {
+  // The detector compares each period with the last three: those are no
+  // part of the window a user asked for.
+  constexpr int kReferencePeriods = 3;
+  const double f_mesh = std::abs(L.omega) * L.teeth / (2.0 * kPi);
+  double next_check_s = 0.0;
+  return [f_mesh, periods, next_check_s](const History& h) mutable -> std::string {
+    if (!(f_mesh > 0.0) || h.rows() < 2) return {};
+    const double t = h.at(h.rows() - 1, static_cast<std::size_t>(h.index("time_s")));
+    if (t < next_check_s) return {};
+    next_check_s = t + 1.0 / f_mesh;
+    diagnostics::MeshHistories mh;
+    mh.t = h.column("time_s");
+    mh.total_force_N = h.column("contact_force_N");
+    mh.mesh_frequency_Hz = f_mesh;
+    const diagnostics::SteadyMesh s = diagnostics::steady_mesh(mh);
+    if (!s.steady || s.steady_periods < periods + kReferencePeriods) return {};
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "the mesh was steady from %.6g s for %d mesh periods (%d asked for, "
+                  "/scene/steady_mesh_periods)",
+                  s.steady_from_s, s.steady_periods, periods);
+    return text;
+  };
 }
 
 nlohmann::json analyse_mesh_dynamics(const GearLayout& L, const History& h) {

@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <numbers>
 
-#include "solver/diagnostics/steady_mesh.hpp"
 #include "solver/job/job_size.hpp"
 
 namespace gearsph::study {
@@ -152,6 +151,48 @@ SpeedSweepRequest read_speed_sweep(const json& request) {
   return out;
 }
 
+json plan_document(const SpeedSweepPlan& p) {
+  const SpeedSweepRequest& r = p.request;
+  return {{"request",
+           {{"job", r.job},
+            {"ratios", r.ratios},
+            {"steady_periods", r.steady_periods},
+            {"stiffness", r.stiffness},
+            {"stiffness_positions", r.stiffness_positions}}},
+          {"lumped_model", p.lumped_model},
+          {"stiffness", {{"position", p.stiffness.position}, {"value", p.stiffness.value}}},
+          {"stiffness_from", p.stiffness_from},
+          {"stiffness_cycle", p.stiffness_cycle},
+          {"natural_frequency_Hz", p.natural_frequency_Hz},
+          {"iso_resonance_Hz", p.iso_resonance_Hz},
+          {"mesh_frequency_Hz", p.mesh_frequency_Hz},
+          {"jobs", p.jobs},
+          {"particle_steps", p.particle_steps},
+          {"transient_allowance_s", p.transient_allowance_s}};
+}
+
+SpeedSweepPlan plan_from_document(const json& d) {
+  SpeedSweepPlan p;
+  const json& r = d.at("request");
+  p.request.job = r.at("job");
+  p.request.ratios = r.at("ratios").get<std::vector<double>>();
+  p.request.steady_periods = r.at("steady_periods").get<int>();
+  p.request.stiffness = r.at("stiffness").get<std::string>();
+  p.request.stiffness_positions = r.at("stiffness_positions").get<int>();
+  p.lumped_model = d.at("lumped_model");
+  p.stiffness.position = d.at("stiffness").at("position").get<std::vector<double>>();
+  p.stiffness.value = d.at("stiffness").at("value").get<std::vector<double>>();
+  p.stiffness_from = d.at("stiffness_from").get<std::string>();
+  p.stiffness_cycle = d.at("stiffness_cycle");
+  p.natural_frequency_Hz = d.at("natural_frequency_Hz").get<double>();
+  p.iso_resonance_Hz = d.at("iso_resonance_Hz").get<double>();
+  p.mesh_frequency_Hz = d.at("mesh_frequency_Hz").get<std::vector<double>>();
+  p.jobs = d.at("jobs").get<std::vector<json>>();
+  p.particle_steps = d.at("particle_steps").get<std::vector<double>>();
+  p.transient_allowance_s = d.at("transient_allowance_s").get<double>();
+  return p;
+}
+
 dyn::SdofModel sdof_from_description(const json& lm, double zeta) {
   return sdof_from_description(
       lm, zeta,
@@ -193,6 +234,9 @@ SpeedSweepPlan plan_speed_sweep(const SpeedSweepRequest& req, const SweepLimits&
   // The rack's travel over the longest run, plus the engagement window.
   s["rack"]["modelled_teeth"] = static_cast<int>(std::ceil(periods_max)) + 3;
   base["output"]["frames"] = 0;
+  // Each speed ends once its steady mesh has lasted the periods asked for
+  // (Scene::ends_early): a speed runs no longer than it needs.
+  s["steady_mesh_periods"] = req.steady_periods;
   // The masses (and so the natural frequency) do not depend on the speed
   // once the modelled teeth are fixed: one short build gives them.
   json probe = base;
@@ -267,22 +311,6 @@ SpeedSweepPlan plan_speed_sweep(const SpeedSweepRequest& req, const SweepLimits&
   }
   if (!issues.empty()) throw InvalidJob(issues);
   return plan;
-}
-
-SteadyMeshStop::SteadyMeshStop(double f_mesh, int steady_periods)
-    : f_mesh_(f_mesh), steady_periods_(steady_periods) {}
-
-void SteadyMeshStop::on_sample(const Simulation&, const History& h) {
-  if (done_ || h.rows() < 2) return;
-  const double t = h.at(h.rows() - 1, static_cast<std::size_t>(h.index("time_s")));
-  if (t < next_check_s_) return;
-  next_check_s_ = t + 1.0 / f_mesh_;  // once a mesh period
-  diagnostics::MeshHistories mh;
-  mh.t = h.column("time_s");
-  mh.total_force_N = h.column("contact_force_N");
-  mh.mesh_frequency_Hz = f_mesh_;
-  const diagnostics::SteadyMesh s = diagnostics::steady_mesh(mh);
-  done_ = s.steady && s.steady_periods >= steady_periods_ + kReferencePeriods;
 }
 
 json sweep_report(const SpeedSweepPlan& plan, const std::vector<json>& summaries,

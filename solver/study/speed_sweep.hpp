@@ -79,6 +79,11 @@ SpeedSweepPlan plan_speed_sweep(const SpeedSweepRequest& request, const SweepLim
                                 double transient_natural_periods = 30.0,
                                 const MeshStiffnessCycle* measured = nullptr, int threads = 0);
 
+// The plan as a document and back (a service keeps it with the study, and
+// reports from it once the study's jobs have run).
+nlohmann::json plan_document(const SpeedSweepPlan& plan);
+SpeedSweepPlan plan_from_document(const nlohmann::json& document);
+
 // The lumped model from a scene's model.lumped_model block: ISO's two
 // levels, or the given stiffness over the cycle.
 gear::dynamics::SdofModel sdof_from_description(const nlohmann::json& lumped_model,
@@ -86,23 +91,6 @@ gear::dynamics::SdofModel sdof_from_description(const nlohmann::json& lumped_mod
 gear::dynamics::SdofModel sdof_from_description(const nlohmann::json& lumped_model,
                                                 double damping_ratio,
                                                 const gear::dynamics::MeshCycleTable& stiffness);
-
-// Stops a run once its history holds `steady_periods` mesh periods of
-// steady mesh (diagnostics/steady_mesh.hpp) after its start transient: a
-// speed runs no longer than it needs.
-class SteadyMeshStop : public RunObserver {
- public:
-  SteadyMeshStop(double mesh_frequency_Hz, int steady_periods);
-  void on_sample(const Simulation&, const History& h) override;
-  bool cancelled() override { return done_; }
-  bool stopped_steady() const { return done_; }
-
- private:
-  double f_mesh_;
-  int steady_periods_;
-  double next_check_s_ = 0.0;
-  bool done_ = false;
-};
 
 // speed_sweep.json from the plan, each speed's summary (null: did not
 // run) and the lumped model swept with the damping measured from the SPH
