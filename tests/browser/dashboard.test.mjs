@@ -11,7 +11,7 @@
 import { mkdirSync, mkdtempSync, rmSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
-import { SHOTS, check, failures, openBrowser, startServer } from "./harness.mjs";
+import { SHOTS, check, failures, openBrowser, startServer, tearDown, finish, checkNoConsoleErrors } from "./harness.mjs";
 
 const STEP_TIMEOUT = 120_000;
 
@@ -334,17 +334,13 @@ try {
   check(filletOverflow <= 1, `no horizontal scrolling of the fillet panel at 420 px (overflow ${filletOverflow} px)`);
   await shot("13-narrow-fillet", { element: page.locator("#fillet") });
 
-  check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ":\n  " + consoleErrors.join("\n  ") : ""}`);
+  checkNoConsoleErrors(consoleErrors);
   exitCode = failures.length ? 1 : 0;
 } catch (e) {
   console.error(`FAIL: ${e.stack || e}`);
   await shot("failure").catch(() => {});
   if (consoleErrors.length) console.error("console errors:\n  " + consoleErrors.join("\n  "));
 } finally {
-  await context.close();
-  server.child.kill("SIGTERM");
-  await new Promise((r) => server.child.once("exit", r));
-  rmSync(scratch, { recursive: true, force: true });
+  await tearDown({ context, server, scratch });
 }
-if (failures.length) console.error(`${failures.length} check(s) failed`);
-process.exit(exitCode);
+finish(exitCode);

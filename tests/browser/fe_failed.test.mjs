@@ -7,10 +7,10 @@
 // error fails the test.
 //
 //   node tests/browser/fe_failed.test.mjs --gearsph build/gearsph --screenshots build/browser-screenshots
-import { chmodSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from "node:fs";
+import { chmodSync, mkdirSync, mkdtempSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
-import { SHOTS, check, failures, openBrowser, startServer } from "./harness.mjs";
+import { SHOTS, check, failures, openBrowser, startServer, tearDown, finish, checkNoConsoleErrors } from "./harness.mjs";
 
 const scratch = mkdtempSync(join(tmpdir(), "gearsph-browser-fe-"));
 mkdirSync(SHOTS, { recursive: true });
@@ -78,17 +78,13 @@ try {
   check(/gmsh/.test(await viewBadge.getAttribute("title")), "its title gives the tool's words");
   await page.screenshot({ path: join(SHOTS, "15-fe-check-failed-job.png"), fullPage: true });
 
-  check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ":\n  " + consoleErrors.join("\n  ") : ""}`);
+  checkNoConsoleErrors(consoleErrors);
   exitCode = failures.length ? 1 : 0;
 } catch (e) {
   console.error(`FAIL: ${e.stack || e}`);
   console.error(server.log());
   await page.screenshot({ path: join(SHOTS, "fe-failed-failure.png"), fullPage: true }).catch(() => {});
 } finally {
-  await context.close();
-  server.child.kill("SIGTERM");
-  await new Promise((r) => server.child.once("exit", r));
-  rmSync(scratch, { recursive: true, force: true });
+  await tearDown({ context, server, scratch });
 }
-if (failures.length) console.error(`${failures.length} check(s) failed`);
-process.exit(exitCode);
+finish(exitCode);

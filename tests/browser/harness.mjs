@@ -2,6 +2,7 @@
 // `gearsph serve` on a free loopback port, and headless Chromium on one page
 // that records console errors.
 import { spawn } from "node:child_process";
+import { rmSync } from "node:fs";
 import { resolve } from "node:path";
 import { chromium } from "playwright-core";
 
@@ -66,4 +67,21 @@ export async function openBrowser(profileDir, { timeout = 120_000, expected = ()
   });
   page.on("pageerror", (e) => consoleErrors.push(`page error: ${e.message}`));
   return { context, page, consoleErrors };
+}
+
+// The end every test shares: no console errors, then the browser closed,
+// the server stopped and the scratch directory removed however the test
+// went; finish() exits 1 if a check failed or the test threw.
+export function checkNoConsoleErrors(consoleErrors) {
+  check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ":\n  " + consoleErrors.join("\n  ") : ""}`);
+}
+export async function tearDown({ context, server, scratch }) {
+  await context.close();
+  server.child.kill("SIGTERM");
+  await new Promise((r) => server.child.once("exit", r));
+  rmSync(scratch, { recursive: true, force: true });
+}
+export function finish(exitCode) {
+  if (failures.length) console.error(`${failures.length} check(s) failed`);
+  process.exit(exitCode);
 }

@@ -8,10 +8,10 @@
 // 400 fails the test.
 //
 //   node tests/browser/rating.test.mjs --gearsph build/gearsph --screenshots build/browser-screenshots
-import { copyFileSync, mkdirSync, mkdtempSync, rmSync } from "node:fs";
+import { copyFileSync, mkdirSync, mkdtempSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
-import { SHOTS, check, failures, openBrowser, startServer } from "./harness.mjs";
+import { SHOTS, check, failures, openBrowser, startServer, tearDown, finish, checkNoConsoleErrors } from "./harness.mjs";
 
 const within = (value, reference, tolerance) => Math.abs(value / reference - 1) <= tolerance;
 
@@ -109,17 +109,13 @@ try {
   check(await page.locator("#rating-verdict").count() === 0, "no rating is shown for a refused pair");
   await page.screenshot({ path: join(SHOTS, "17-rating-refused.png"), fullPage: true });
 
-  check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ":\n  " + consoleErrors.join("\n  ") : ""}`);
+  checkNoConsoleErrors(consoleErrors);
   exitCode = failures.length ? 1 : 0;
 } catch (e) {
   console.error(`FAIL: ${e.stack || e}`);
   console.error(server.log());
   await page.screenshot({ path: join(SHOTS, "rating-failure.png"), fullPage: true }).catch(() => {});
 } finally {
-  await context.close();
-  server.child.kill("SIGTERM");
-  await new Promise((r) => server.child.once("exit", r));
-  rmSync(scratch, { recursive: true, force: true });
+  await tearDown({ context, server, scratch });
 }
-if (failures.length) console.error(`${failures.length} check(s) failed`);
-process.exit(exitCode);
+finish(exitCode);

@@ -6,10 +6,10 @@
 // reload does not ask again. Any console error fails the test.
 //
 //   node tests/browser/token.test.mjs --gearsph build/gearsph --screenshots build/browser-screenshots
-import { mkdirSync, mkdtempSync, rmSync, writeFileSync } from "node:fs";
+import { mkdirSync, mkdtempSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
-import { SHOTS, check, failures, openBrowser, startServer } from "./harness.mjs";
+import { SHOTS, check, failures, openBrowser, startServer, tearDown, finish, checkNoConsoleErrors } from "./harness.mjs";
 
 const TOKEN = "token for the dashboard test";
 
@@ -95,17 +95,13 @@ try {
   const unexpected = consoleErrors.filter((e) => !(e.includes("401") && e.includes("/login")));
   consoleErrors.length = 0;
   consoleErrors.push(...unexpected);
-  check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ":\n  " + consoleErrors.join("\n  ") : ""}`);
+  checkNoConsoleErrors(consoleErrors);
   exitCode = failures.length ? 1 : 0;
 } catch (e) {
   console.error(`FAIL: ${e.stack || e}`);
   await page.screenshot({ path: join(SHOTS, "token-failure.png") }).catch(() => {});
   if (consoleErrors.length) console.error("console errors:\n  " + consoleErrors.join("\n  "));
 } finally {
-  await context.close();
-  server.child.kill("SIGTERM");
-  await new Promise((r) => server.child.once("exit", r));
-  rmSync(scratch, { recursive: true, force: true });
+  await tearDown({ context, server, scratch });
 }
-if (failures.length) console.error(`${failures.length} check(s) failed`);
-process.exit(exitCode);
+finish(exitCode);

@@ -1,4 +1,4 @@
-// The dashboard: a hash router over five views and one shared event stream.
+// The dashboard: a hash router over six views and one shared event stream.
 // Only this module starts anything; the others can be imported on their own.
 import { ensureSignedIn, get, onTokenNeeded } from "./api.js";
 import { compareView } from "./compare.js";
@@ -7,6 +7,7 @@ import { serverDegraded, serverIdentity } from "./format.js";
 import { jobsView } from "./jobs.js";
 import { ratingView } from "./rating.js";
 import { resultView } from "./result.js";
+import { studyView } from "./study.js";
 import { submitView } from "./submit.js";
 import { askForToken, h } from "./ui.js";
 
@@ -20,6 +21,7 @@ function route() {
   const parts = path.split("/").filter(Boolean);
   let view = "submit";
   let render;
+  let title = null; // the view's own, if not its tab's
   if (parts[0] === "jobs" && parts[1]) {
     view = "jobs";
     render = () => resultView(main, decodeURIComponent(parts[1]), params);
@@ -29,6 +31,11 @@ function route() {
   } else if (parts[0] === "compare") {
     view = "compare";
     render = () => compareView(main, params);
+  } else if (parts[0] === "studies" && parts[1]) {
+    // A study sets its jobs side by side: it sits under Compare in the tab bar.
+    view = "compare";
+    title = "Study";
+    render = () => studyView(main, decodeURIComponent(parts[1]));
   } else if (parts[0] === "rating") {
     view = "rating";
     render = () => ratingView(main);
@@ -42,7 +49,7 @@ function route() {
   current?.dispose?.();
   main.replaceChildren();
   current = render();
-  const title = { submit: "New job", jobs: "Jobs", compare: "Compare", rating: "Rating" }[view];
+  title ??= { submit: "New job", jobs: "Jobs", compare: "Compare", rating: "Rating" }[view];
   document.title = `${title} · GearSPH`;
 }
 

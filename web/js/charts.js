@@ -45,13 +45,19 @@ function drawMarks(marks, scale) {
     ctx.lineWidth = devicePixelRatio;
     ctx.setLineDash([3 * devicePixelRatio, 3 * devicePixelRatio]);
     ctx.font = `${11 * devicePixelRatio}px system-ui, sans-serif`;
+    const right = u.bbox.left + u.bbox.width;
+    const gap = 4 * devicePixelRatio;
     for (const m of marks) {
       const x = Math.round(u.valToPos(m.value / scale, "x", true));
       ctx.beginPath();
       ctx.moveTo(x, top);
       ctx.lineTo(x, top + height);
       ctx.stroke();
-      ctx.fillText(m.label, x + 4 * devicePixelRatio, top + 12 * devicePixelRatio);
+      // Right of its line, or left of it where it would leave the plot
+      // (uPlot leaves its axes' alignment on the context: set it each time).
+      const fits = x + gap + ctx.measureText(m.label).width <= right;
+      ctx.textAlign = fits ? "left" : "right";
+      ctx.fillText(m.label, fits ? x + gap : x - gap, top + 12 * devicePixelRatio);
     }
     ctx.restore();
   };

@@ -27,7 +27,7 @@ export function resultView(root, id) {
   function showHead(job) {
     const active = job.status === "accepted" || job.status === "running";
     // Progress events come four times a second: redraw only on a change.
-    const key = `${job.name}|${job.status}|${job.message}|${job.fe_check?.status}`;
+    const key = `${job.name}|${job.status}|${job.message}|${job.fe_check?.status}|${job.studyID}`;
     if (key === headKey) return;
     headKey = key;
     put(head,
@@ -35,6 +35,7 @@ export function resultView(root, id) {
       statusBadge(job.status),
       feCheckBadge(job),
       h("span", { class: "message" }, job.message || ""),
+      job.studyID ? h("a", { href: `#/studies/${encodeURIComponent(job.studyID)}`, id: "job-study", title: "the study this job belongs to" }, "study") : null,
       h("span", { style: "flex:1" }),
       active ? h("button", { type: "button", class: "danger", onclick: () => cancelJob(job) }, "Cancel job") : null);
   }
