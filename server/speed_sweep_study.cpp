@@ -48,8 +48,9 @@ SpeedSweepStudy plan_speed_sweep_study(const nlohmann::json& body, const Limits&
     issues.push_back({"/speed_sweep/stiffness",
                       "the measured stiffness runs quasi-static checks over a mesh cycle "
                       "(minutes) before the speeds can be chosen, longer than a request may "
-                      "take; give \"iso\" here, or run `gearsph study speed-sweep JOB.json "
-                      "--stiffness measured`"});
+                      "take; give \"iso\", or the table an earlier measurement wrote "
+                      "(`gearsph study speed-sweep JOB.json --stiffness measured` writes "
+                      "stiffness_cycle.json: {\"position\": [...], \"stiffness_N_m\": [...]})"});
   }
   if (!issues.empty()) throw InvalidJob(issues);
 

@@ -31,7 +31,8 @@ struct SpeedSweepStudy {
 // InvalidJob with pointers into the request (/speed_sweep/job/..., a
 // ratio at /speed_sweep/ratios/k, a speed whose job the limits refuse).
 // The measured stiffness is refused here: its quasi-static checks take
-// minutes, longer than a request may (the CLI runs them).
+// minutes, longer than a request may (the CLI runs them); the table they
+// give may be posted as the stiffness.
 SpeedSweepStudy plan_speed_sweep_study(const nlohmann::json& body, const Limits& limits);
 
 // The sweep's report from the stored plan and each speed's summary in the

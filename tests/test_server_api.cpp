@@ -705,6 +705,9 @@ TEST(ServerStudies, ASpeedSweepIsPlannedRefusedAndReported) {
   bad["speed_sweep"]["stiffness"] = "measured";
   EXPECT_EQ(refused_at(bad), std::vector<std::string>{"/speed_sweep/stiffness"});
   bad = sweep;
+  bad["speed_sweep"]["stiffness"] = {{"position", {0.5, 0.2}}, {"stiffness_N_m", {3e8, 4e8}}};
+  EXPECT_EQ(refused_at(bad), std::vector<std::string>{"/speed_sweep/stiffness"});
+  bad = sweep;
   bad["axes"] = json::array();
   EXPECT_EQ(refused_at(bad), std::vector<std::string>{"/axes"});
   EXPECT_EQ(c.get("/jobs").json().at("jobs").size(), 0u);  // nothing was stored

@@ -104,6 +104,32 @@ TEST(SpeedSweep, PlansEachSpeedAtItsRatioAndRefusesJobsOverTheLimits) {
   }
 }
 
+// A stiffness table given (an earlier measurement's stiffness_cycle.json)
+// is the lumped model's: the speeds follow the natural frequency on its
+// mean, sqrt(k_mean / m_e) / (2 pi); a table that is no cycle is refused at
+// /stiffness with the form it must take.
+TEST(SpeedSweep, AGivenStiffnessTableSetsTheSpeeds) {
+  const json table = {{"position", {0.1, 0.5, 0.9}}, {"stiffness_N_m", {4e8, 2.7e8, 2.7e8}}};
+  const SpeedSweepRequest req =
+      read_speed_sweep({{"job", loaded_job()}, {"ratios", {1.0}}, {"stiffness", table}});
+  EXPECT_EQ(req.stiffness, "given");
+  const SpeedSweepPlan plan = plan_speed_sweep(req, SweepLimits{});
+  EXPECT_EQ(plan.stiffness_from, "given");
+  EXPECT_EQ(plan.stiffness.value, (std::vector<double>{4e8, 2.7e8, 2.7e8}));
+  const double m = plan.lumped_model.at("mass_on_line_of_action_kg").get<double>();
+  EXPECT_NEAR(plan.natural_frequency_Hz,
+              std::sqrt(plan.stiffness.mean() / m) / (2.0 * std::numbers::pi),
+              1e-9 * plan.natural_frequency_Hz);
+  EXPECT_EQ(plan_from_document(plan_document(plan)).request.given_stiffness.value,
+            plan.stiffness.value);
+  json descending = table;
+  descending["position"] = {0.5, 0.1, 0.9};
+  EXPECT_EQ(pointers_of({{"job", loaded_job()}, {"stiffness", descending}}),
+            std::vector<std::string>{"/stiffness"});
+  EXPECT_EQ(pointers_of({{"job", loaded_job()}, {"stiffness", {{"position", {0.5}}}}}),
+            std::vector<std::string>{"/stiffness"});
+}
+
 // A service keeps the plan as a document and reports from it once the
 // jobs have run: the plan read back reports exactly as the plan itself, on
 // the same summaries (here one speed with a K_v, one that did not run).

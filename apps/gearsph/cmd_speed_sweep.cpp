@@ -102,12 +102,15 @@ int cmd_speed_sweep(Args& args) {
     throw std::invalid_argument(
         "usage: gearsph study speed-sweep JOB.json --out DIR [--ratios 0.2,0.4,...] "
         "[--steady-periods N] [--threads N] [--max-particle-steps N] [--lumped-only] "
-        "[--damping-ratio Z] [--stiffness measured|iso] [--stiffness-positions N]");
+        "[--damping-ratio Z] [--stiffness measured|iso|TABLE.json] [--stiffness-positions N]");
   }
   json request = {
       {"ratios", ratios_text ? parse_ratios(*ratios_text) : json(study::default_sweep_ratios())},
       {"steady_periods", steady_periods},
-      {"stiffness", stiffness},
+      // A file: a table given (a measured cycle's stiffness_cycle.json).
+      {"stiffness", stiffness == "iso" || stiffness == "measured"
+                        ? json(stiffness)
+                        : json::parse(read_file(stiffness), nullptr, false)},
       {"stiffness_positions", stiffness_positions}};
   study::SpeedSweepPlan plan;
   try {

@@ -131,11 +131,26 @@ SpeedSweepRequest read_speed_sweep(const json& request) {
   // ISO's two levels by default: the measured cycle's single-contact checks
   // are not yet clean (docs/dynamics.md, "The measured stiffness").
   const json stiffness = request.value("stiffness", json("iso"));
-  if (stiffness != "measured" && stiffness != "iso") {
+  if (stiffness.is_object()) {
+    // A table: the positions over the mesh cycle and a stiffness at each.
+    try {
+      out.given_stiffness =
+          mesh_cycle_table(stiffness.at("position").get<std::vector<double>>(),
+                           stiffness.at("stiffness_N_m").get<std::vector<double>>());
+      out.stiffness = "given";
+    } catch (const std::exception& e) {
+      issues.push_back({"/stiffness",
+                        "a given stiffness is {\"position\": [s, ...], \"stiffness_N_m\": [k, "
+                        "...]}: at least two positions ascending within [0, 1) of the mesh "
+                        "cycle, a positive stiffness each (a measured cycle's "
+                        "stiffness_cycle.json is one); " +
+                            std::string(e.what())});
+    }
+  } else if (stiffness != "measured" && stiffness != "iso") {
     issues.push_back({"/stiffness",
                       "the lumped model's mesh stiffness is \"measured\" (quasi-static checks "
-                      "of the same pair over a mesh cycle) or \"iso\" (ISO 6336-1's two "
-                      "levels); got " +
+                      "of the same pair over a mesh cycle), \"iso\" (ISO 6336-1's two "
+                      "levels) or a table {\"position\": [...], \"stiffness_N_m\": [...]}; got " +
                           stiffness.dump()});
   } else {
     out.stiffness = stiffness.get<std::string>();
@@ -158,6 +173,8 @@ json plan_document(const SpeedSweepPlan& p) {
             {"ratios", r.ratios},
             {"steady_periods", r.steady_periods},
             {"stiffness", r.stiffness},
+            {"given_stiffness",
+             {{"position", r.given_stiffness.position}, {"value", r.given_stiffness.value}}},
             {"stiffness_positions", r.stiffness_positions}}},
           {"lumped_model", p.lumped_model},
           {"stiffness", {{"position", p.stiffness.position}, {"value", p.stiffness.value}}},
@@ -179,6 +196,9 @@ SpeedSweepPlan plan_from_document(const json& d) {
   p.request.steady_periods = r.at("steady_periods").get<int>();
   p.request.stiffness = r.at("stiffness").get<std::string>();
   p.request.stiffness_positions = r.at("stiffness_positions").get<int>();
+  p.request.given_stiffness.position =
+      r.at("given_stiffness").at("position").get<std::vector<double>>();
+  p.request.given_stiffness.value = r.at("given_stiffness").at("value").get<std::vector<double>>();
   p.lumped_model = d.at("lumped_model");
   p.stiffness.position = d.at("stiffness").at("position").get<std::vector<double>>();
   p.stiffness.value = d.at("stiffness").at("value").get<std::vector<double>>();
@@ -248,7 +268,11 @@ SpeedSweepPlan plan_speed_sweep(const SpeedSweepRequest& req, const SweepLimits&
         {"/job/scene/pinion", plan.lumped_model.value("note", std::string("no lumped model"))}});
   }
   plan.stiffness_from = req.stiffness;
-  if (req.stiffness == "measured") {
+  if (req.stiffness == "given") {
+    plan.stiffness = req.given_stiffness;
+    plan.stiffness_cycle = {{"position", req.given_stiffness.position},
+                            {"stiffness_N_m", req.given_stiffness.value}};
+  } else if (req.stiffness == "measured") {
     const MeshStiffnessCycle cycle =
         measured ? *measured : mesh_stiffness_cycle(req.job, req.stiffness_positions, threads);
     plan.stiffness = cycle.table;

@@ -28,7 +28,7 @@ struct SweepLimits {
 };
 
 // A request: {"job": {...}, "ratios": [0.2, ...], "steady_periods": 20,
-// "stiffness": "measured" | "iso", "stiffness_positions": 8}.
+// "stiffness": "measured" | "iso" | a table, "stiffness_positions": 8}.
 struct SpeedSweepRequest {
   nlohmann::json job;  // validated, defaults filled
   std::vector<double> ratios;
@@ -36,7 +36,10 @@ struct SpeedSweepRequest {
   // The lumped model's mesh stiffness over the cycle: from quasi-static
   // checks of the same pair (mesh_stiffness_cycle.hpp) or ISO 6336-1's two
   // levels.
+  // Or a table given ("given"): {"position": [...], "stiffness_N_m": [...]},
+  // such as a measured cycle's stiffness_cycle.json from an earlier sweep.
   std::string stiffness = "iso";
+  gear::dynamics::MeshCycleTable given_stiffness;
   int stiffness_positions = kDefaultCyclePositions;
 };
 
@@ -55,7 +58,7 @@ struct SpeedSweepPlan {
   // The stiffness the lumped model takes, and its natural frequency on the
   // table's mean, which sets the speeds.
   gear::dynamics::MeshCycleTable stiffness;
-  std::string stiffness_from;      // "measured" | "iso"
+  std::string stiffness_from;      // "measured" | "iso" | "given"
   nlohmann::json stiffness_cycle;  // the measured cycle's checks (null for ISO)
   double natural_frequency_Hz = 0.0;
   double iso_resonance_Hz = 0.0;  // 0: not rated

@@ -6,6 +6,7 @@ import { lineChart } from "./charts.js";
 import { events } from "./events.js";
 import { duration, eng, eta, int } from "./format.js";
 import { cancelJob, feCheckBadge, progressBar, stageName, statusBadge } from "./job-parts.js";
+import { crackPanel } from "./result-crack.js";
 import { filletPanel } from "./result-fillet.js";
 import { summaryPanel } from "./result-summary.js";
 import { fieldViewer } from "./result-viewer.js";
@@ -114,10 +115,13 @@ export function resultView(root, id) {
       "image.png", h("span", { class: "muted" }, "this frame"));
     const fillet = filletPanel(id, summary, results.files);
     if (fillet) charts.push(fillet);
+    const crack = crackPanel(summary);
+    if (crack) charts.push(crack);
     viewer = fieldViewer(id, summary, times, pngDownload);
     put(content,
       h("div", { class: "split" }, viewer.section, summaryPanel(summary, results.files, pngDownload)),
       fillet?.section,
+      crack?.section,
       h("section", { class: "panel", "aria-labelledby": "charts-head" },
         h("header", {}, h("h2", { id: "charts-head" }, "Time histories"),
           h("span", { class: "muted" }, "drag to zoom in time, double-click to reset")),
@@ -129,6 +133,7 @@ export function resultView(root, id) {
       holder.append(el);
       charts.push(lineChart(el, { ...c, time_s: hist.data.time_s }));
     }
+    crack?.draw();
     await fillet?.draw();
   }
 

@@ -43,6 +43,8 @@ export const GROUPS = [
     { pointer: "/discretization/kernel", label: "Kernel", type: "enum" },
     { pointer: "/method/formulation", label: "Formulation", type: "enum" },
     { pointer: "/method/contact/model", label: "Contact model", type: "enum" },
+    // Off: nothing sent (the schema's default, a dynamic run).
+    { pointer: "/scene/quasi_static", label: "Quasi-static (static check)", type: "bool" },
   ]],
   ["Time and output", [
     { pointer: "/time/end_s", label: "End time" },
@@ -50,7 +52,23 @@ export const GROUPS = [
     { pointer: "/output/frames", label: "Frames", step: 1 },
   ]],
 ];
-export const FIELDS = GROUPS.flatMap(([, f]) => f);
+// The root crack (docs/cracks.md, "The gear"): a section of its own, shown
+// for a quasi-static job and sent only while its box is ticked, so that a
+// hidden or unticked section leaves the job as it was. Each field shows the
+// schema's description in full: the limits depend on the spacing and the
+// tooth, which a range cannot say.
+export const CRACK_SECTION = "crack";
+export const CRACK_GROUP = ["Root crack", [
+  { pointer: "/scene/crack/fillet_position", label: "Start on the tension fillet", type: "position", initial: "peak", section: CRACK_SECTION, describe: true },
+  { pointer: "/scene/crack/length_mm", label: "Initial length", placeholder: "required", section: CRACK_SECTION, describe: true },
+  { pointer: "/scene/crack/angle_deg", label: "Angle to the fillet's normal", section: CRACK_SECTION, describe: true },
+  { pointer: "/scene/crack/increment_mm", label: "Increment", placeholder: "4 spacings", section: CRACK_SECTION, describe: true },
+  { pointer: "/scene/crack/max_increments", label: "Increments at most", step: 1, section: CRACK_SECTION, describe: true },
+  { pointer: "/scene/crack/paris/C", label: "Paris C", unit: "m/cycle", placeholder: "no life", optional: true, section: CRACK_SECTION, describe: true },
+  { pointer: "/scene/crack/paris/m", label: "Paris exponent m", optional: true, section: CRACK_SECTION, describe: true },
+  { pointer: "/scene/pinion/backup_ratio", label: "Backup ratio m_B", placeholder: "rim_depth_mm", optional: true, section: CRACK_SECTION, describe: true },
+]];
+export const FIELDS = [...GROUPS, CRACK_GROUP].flatMap(([, f]) => f);
 export const PAPER_CASE = { name: "paper-base-case", scene: { type: "rack_pinion" } };
 
 export function fieldId(pointer) {
@@ -64,21 +82,24 @@ export function formText(v) {
   return String(v);
 }
 
-// The schema's node of a field and the default it shows: its own, or the
-// one its enclosing object gives it (the material's, say).
+// The schema's node of a field, the default it shows (its own, or the one
+// its enclosing object gives it: the material's, say) and its description.
 export function fieldSchema(schema, pointer) {
   const node = nodeAt(schema, pointer);
   const parent = nodeAt(schema, pointer.replace(/\/[^/]*$/, ""));
   const key = pointer.split("/").pop();
   const def = node?.default !== undefined ? node.default
     : parent?.default && typeof parent.default === "object" ? parent.default[key] : undefined;
-  return { node, def };
+  // A member the schema does not describe (Paris' C) is described by its object.
+  return { node, def, description: node?.description || parent?.description || "" };
 }
 
 // "range 6 to 300 · default 12" under a field.
 export function hintText(node, def, spec) {
-  const limits = limitsText(node);
-  const showDefault = def !== undefined && typeof def !== "object" && spec.type !== "text";
+  // A field of one of several forms (a number or "peak"): each form's limits.
+  const limits = limitsText(node) || (node?.anyOf || [])
+    .map((n) => (n.const !== undefined ? JSON.stringify(n.const) : limitsText(n))).filter(Boolean).join(" or ");
+  const showDefault = def !== undefined && typeof def !== "object" && spec.type !== "text" && spec.type !== "bool";
   const text = [limits && `range ${limits}`, showDefault && `default ${formText(def)}`].filter(Boolean).join(" · ");
   return text || (node?.description || "").slice(0, 80);
 }
@@ -88,14 +109,18 @@ export function hintText(node, def, spec) {
 // the modelled teeth, text as text.
 export function parseValue(raw, spec) {
   if (spec.type === "teeth") return /^-?\d+$/.test(raw) ? Number(raw) : raw;
+  if (spec.type === "bool") return raw === "true";
   if (spec.type === "text" || spec.type === "enum") return raw;
   return Number.isFinite(Number(raw)) ? Number(raw) : raw;
 }
 
-// The job of the form: [[spec, raw text]]; empty fields are left to the scene.
-export function jobFromValues(entries) {
+// The job of the form: [[spec, raw text]]; empty fields are left to the
+// scene, and so are the fields of a section not in `sections` ({crack: true}).
+// A checkbox reads "true" when ticked, "" when not.
+export function jobFromValues(entries, sections = {}) {
   const job = { scene: { type: "rack_pinion" } };
   for (const [spec, text] of entries) {
+    if (spec.section && !sections[spec.section]) continue;
     const raw = text.trim();
     if (raw !== "") setPointer(job, spec.pointer, parseValue(raw, spec));
   }

@@ -2,8 +2,45 @@
 // server finds, shown at the fields they concern (and listed above the
 // form, each linked to its field).
 import { getPointer, unitOf } from "./schema.js";
-import { GROUPS, fieldId, fieldPointerFor, fieldSchema, formText, hintText, jobFromValues } from "./submit-fields.js";
+import {
+  CRACK_GROUP, CRACK_SECTION, GROUPS, fieldId, fieldPointerFor, fieldSchema, formText, hintText, jobFromValues,
+} from "./submit-fields.js";
 import { h, put } from "./ui.js";
+
+// The root crack's section: shown for a quasi-static job (a crack needs
+// the static state), its fields only once "grow a root crack" is ticked;
+// sections() says whether its fields go into the job.
+function crackSection(inputs, fieldRow, onEdit) {
+  const box = h("input", { type: "checkbox", id: "crack-on", "aria-controls": "crack-fields" });
+  let section = null;
+  let grid = null;
+  const quasiStatic = () => inputs.get("/scene/quasi_static")?.input.checked === true;
+  function show() {
+    if (!section) return;
+    section.hidden = !quasiStatic();
+    grid.hidden = !box.checked;
+  }
+  return {
+    build(schema) {
+      const [title, fields] = CRACK_GROUP;
+      grid = h("div", { class: "fields", id: "crack-fields" });
+      for (const f of fields) grid.append(fieldRow(schema, f));
+      box.addEventListener("change", () => { show(); onEdit(0); });
+      inputs.get("/scene/quasi_static")?.input.addEventListener("change", show);
+      section = h("fieldset", { id: "crack-section" }, h("legend", {}, title),
+        h("label", { class: "crack-toggle", for: "crack-on" }, box,
+          "grow a root crack from tooth 0's tension fillet (docs/cracks.md)"),
+        grid);
+      show();
+      return section;
+    },
+    fill(job) {
+      box.checked = getPointer(job, "/scene/crack") !== undefined;
+      show();
+    },
+    sections: () => ({ [CRACK_SECTION]: quasiStatic() && box.checked }),
+  };
+}
 
 // onEdit(delay): a field changed; the preview follows after `delay` ms
 // (undefined: the usual pause while typing).
@@ -21,9 +58,11 @@ export function jobForm({ onEdit }) {
       const none = spec.optional ? [h("option", { value: "" }, "—")] : [];
       input = h("select", { id, name: spec.pointer },
         [...none, ...node.enum.map((v) => h("option", { value: v }, v))]);
-    } else if (spec.type === "text" || spec.type === "teeth") {
+    } else if (spec.type === "bool") {
+      input = h("input", { id, name: spec.pointer, type: "checkbox" });
+    } else if (spec.type === "text" || spec.type === "teeth" || spec.type === "position") {
       input = h("input", { id, name: spec.pointer, type: "text", autocomplete: "off",
-        placeholder: spec.type === "teeth" ? "auto, all or a number" : "" });
+        placeholder: spec.type === "teeth" ? "auto, all or a number" : spec.type === "position" ? "0 to 1, or peak" : "" });
     } else {
       input = h("input", { id, name: spec.pointer, type: "number", step: spec.step || "any",
         inputmode: "decimal", placeholder: spec.placeholder || "" });
@@ -32,14 +71,26 @@ export function jobForm({ onEdit }) {
     const hint = h("div", { class: "hint", id: id + "-hint", title: description }, hintText(node, def, spec));
     input.setAttribute("aria-describedby", `${id}-hint ${id}-error`);
     input.title = description;
+    // The crack's fields show their description in full (the limits that
+    // depend on the spacing and the tooth are only said there).
+    const full = spec.describe ? fieldSchema(s, spec.pointer).description : "";
+    const help = full ? h("div", { class: "help", id: id + "-help" }, full) : null;
+    if (help) input.setAttribute("aria-describedby", `${id}-hint ${id}-help ${id}-error`);
     const error = h("div", { class: "error", id: id + "-error", hidden: true });
-    const row = h("div", { class: "field", dataset: { pointer: spec.pointer } },
-      h("label", { for: id }, spec.label), input, h("span", { class: "unit" }, unitOf(spec.pointer)), hint, error);
+    const unit = h("span", { class: "unit" }, spec.unit ?? unitOf(spec.pointer));
+    const row = spec.type === "bool"
+      ? h("div", { class: "field", dataset: { pointer: spec.pointer } },
+        h("label", { for: id, class: "field-check" }, input, spec.label), hint, error)
+      : h("div", { class: "field", dataset: { pointer: spec.pointer } },
+        h("label", { for: id }, spec.label), input, unit, hint, help, error);
     inputs.set(spec.pointer, { input, row, error, spec, def });
     input.addEventListener("input", () => { clearFieldError(spec.pointer); onEdit(); });
     input.addEventListener("change", () => onEdit(0));
     return row;
   }
+
+  const crack = crackSection(inputs, fieldRow, onEdit);
+  const sections = () => crack.sections();
 
   // The fields, grouped, from the schema's limits, units and defaults.
   function build(schema) {
@@ -48,6 +99,7 @@ export function jobForm({ onEdit }) {
       for (const f of fields) grid.append(fieldRow(schema, f));
       form.append(h("fieldset", {}, h("legend", {}, title), grid));
     }
+    form.append(crack.build(schema));
   }
 
   function fill(job) {
@@ -56,12 +108,16 @@ export function jobForm({ onEdit }) {
       // An optional block's fields (the material's strength) start empty:
       // a default alone must not make the job carry the block.
       if (v === undefined && def !== undefined && typeof def !== "object" && !spec.optional) v = def;
-      input.value = formText(v);
+      if (v === undefined && spec.initial !== undefined) v = spec.initial;
+      if (spec.type === "bool") input.checked = v === true;
+      else input.value = formText(v);
     }
+    crack.fill(job);
   }
 
   function read() {
-    return jobFromValues([...inputs.values()].map(({ input, spec }) => [spec, input.value]));
+    return jobFromValues([...inputs.values()].map(({ input, spec }) =>
+      [spec, spec.type === "bool" ? (input.checked ? "true" : "") : input.value]), sections());
   }
 
   // Empty fields show what the scene chose for them.
